@@ -1,0 +1,77 @@
+#pragma once
+/// @file types.hpp
+/// Plain value types of the ECO API: scan views, query frames, results and statistics.
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace eco {
+
+/// A read-only view of a scan: `count` points of three floats (x, y, z, in metres, sensor frame),
+/// `stride` floats apart. Works over `Eigen::Vector3f` arrays, packed N x 3 arrays, and KITTI's
+/// N x 4 (x, y, z, reflectance) records alike. The caller owns the memory for the call's duration.
+struct ScanView {
+  const float* data = nullptr;
+  std::size_t count = 0;
+  std::size_t stride = 3;  ///< floats from one point to the next (>= 3)
+
+  ScanView() = default;
+  ScanView(const float* points, std::size_t n, std::size_t stride_floats = 3)
+      : data(points), count(n), stride(stride_floats) {}
+  ScanView(const std::vector<Eigen::Vector3f>& points)  // NOLINT: implicit on purpose
+      : data(points.empty() ? nullptr : points.front().data()), count(points.size()), stride(3) {}
+
+  [[nodiscard]] Eigen::Vector3f operator[](std::size_t i) const {
+    const float* p = data + i * stride;
+    return {p[0], p[1], p[2]};
+  }
+};
+
+/// The frame in which query points are given and results returned.
+enum class Frame {
+  World,  ///< the fixed world frame of the poses
+  Ego,    ///< world axes, origin at the current sensor position (the paper's F_eco,t)
+};
+
+/// One k-nearest-neighbour or radius result.
+struct Neighbor {
+  Eigen::Vector3d point;  ///< in the frame of the query
+  double sq_dist = 0.0;   ///< squared Euclidean distance [m^2]
+};
+
+/// Integer index of a world-aligned voxel: voxel i spans [i*res, (i+1)*res) per axis.
+struct VoxelKey {
+  std::int64_t x = 0, y = 0, z = 0;
+  friend bool operator==(const VoxelKey&, const VoxelKey&) = default;
+  friend auto operator<=>(const VoxelKey&, const VoxelKey&) = default;
+};
+
+/// What the tree holds now. Computed by a walk over the nodes: O(nodes).
+struct Stats {
+  std::size_t points = 0;        ///< points held
+  std::size_t nodes = 0;         ///< live nodes, inner and leaf
+  std::size_t leaves = 0;        ///< live leaves holding at least one point
+  double mean_leaf_depth = 0.0;  ///< over non-empty leaves, weighted equally
+  int max_leaf_depth = 0;
+  std::size_t bytes = 0;         ///< every byte the tree's pools reserve, free slots included
+};
+
+/// What the last update did.
+struct UpdateStats {
+  std::size_t scan_points = 0;        ///< points in the scan given
+  std::size_t inserted = 0;           ///< scan points now held
+  std::size_t skipped_nonfinite = 0;  ///< scan points with a NaN or infinite coordinate
+  std::size_t skipped_by_policy = 0;  ///< finite scan points outside Box(p_t) (or outside R_in)
+  std::size_t skipped_by_density = 0; ///< scan points refused by the density cap
+  std::size_t pruned = 0;             ///< held points that left the box (R_out)
+  std::size_t aged_out = 0;           ///< held points dropped by the age limit
+  std::size_t relinked_subtrees = 0;  ///< subtrees kept whole and attached to a new parent
+  std::size_t rebuilt_subtrees = 0;   ///< subtrees dissolved and their points re-inserted
+  std::size_t reinserted_points = 0;  ///< points moved by those rebuilds
+  bool rebased = false;               ///< the precision origin moved this frame (see EgoOctree)
+};
+
+}  // namespace eco

@@ -1,0 +1,69 @@
+#include <eco/config.hpp>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace eco {
+namespace {
+
+[[noreturn]] void reject(const std::string& field, double value, const std::string& rule) {
+  std::ostringstream msg;
+  msg << "eco::Config: " << field << " = " << value << " is invalid: " << rule;
+  throw std::invalid_argument(msg.str());
+}
+
+constexpr int kDeepestLevel = 24;  // cells 2^-24 of the root: far below any LiDAR's noise
+
+}  // namespace
+
+double Config::quantum() const {
+  if (recentring == Recentring::Exact) return 0.0;
+  return box_side / double((1u << quantum_levels) - 1u);
+}
+
+double Config::root_side() const {
+  if (recentring == Recentring::Exact) return box_side;
+  return quantum() * double(1u << quantum_levels);
+}
+
+int Config::max_depth() const {
+  return int(std::floor(std::log2(root_side() / min_cell_size)));
+}
+
+void Config::validate() const {
+  if (!std::isfinite(box_side) || box_side <= 0.0) reject("box_side", box_side, "must be finite and > 0 m");
+  if (box_side > 1e5) reject("box_side", box_side, "must be at most 1e5 m");
+  if (leaf_capacity == 0) reject("leaf_capacity", leaf_capacity, "must be at least 1");
+  if (!std::isfinite(min_cell_size) || min_cell_size <= 0.0) {
+    reject("min_cell_size", min_cell_size, "must be finite and > 0 m");
+  }
+  if (recentring == Recentring::Quantised && (quantum_levels < 1 || quantum_levels > 5)) {
+    reject("quantum_levels", quantum_levels, "must be in 1..5");
+  }
+  if (recentring != Recentring::Quantised && recentring != Recentring::Exact) {
+    reject("recentring", double(recentring), "is not a Recentring value");
+  }
+  if (insert_policy != InsertPolicy::ShiftInOnly && insert_policy != InsertPolicy::AllInBox) {
+    reject("insert_policy", double(insert_policy), "is not an InsertPolicy value");
+  }
+  if (min_cell_size > root_side()) {
+    reject("min_cell_size", min_cell_size, "must not exceed the root cell side");
+  }
+  if (recentring == Recentring::Quantised && min_cell_size > quantum()) {
+    reject("min_cell_size", min_cell_size,
+           "must not exceed the quantum q = box_side / (2^quantum_levels - 1) = " +
+               std::to_string(quantum()) + " m");
+  }
+  if (max_depth() > kDeepestLevel) {
+    reject("min_cell_size", min_cell_size,
+           "is too small for box_side: more than 24 levels below the root");
+  }
+  if (density_cap.enabled() &&
+      (!std::isfinite(density_cap.cell_size) || density_cap.cell_size <= 0.0)) {
+    reject("density_cap.cell_size", density_cap.cell_size,
+           "must be finite and > 0 m while density_cap.max_points > 0");
+  }
+}
+
+}  // namespace eco

@@ -1,0 +1,150 @@
+#pragma once
+// Boxes and cells. All coordinates here are in the "anchor frame": world minus the precision
+// origin. Stored points and AABBs are float; cell walls and the ego box are double.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace eco::detail {
+
+/// Tight bounds of the points below a node (float, like the points).
+struct Aabb {
+  std::array<float, 3> lo{inf(), inf(), inf()};
+  std::array<float, 3> hi{-inf(), -inf(), -inf()};
+
+  static constexpr float inf() { return std::numeric_limits<float>::infinity(); }
+  [[nodiscard]] bool empty() const { return lo[0] > hi[0]; }
+  void grow(float x, float y, float z) {
+    lo = {std::min(lo[0], x), std::min(lo[1], y), std::min(lo[2], z)};
+    hi = {std::max(hi[0], x), std::max(hi[1], y), std::max(hi[2], z)};
+  }
+  [[nodiscard]] bool contains(float x, float y, float z) const {
+    return x >= lo[0] && x <= hi[0] && y >= lo[1] && y <= hi[1] && z >= lo[2] && z <= hi[2];
+  }
+  void merge(const Aabb& o) {
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], o.lo[a]);
+      hi[a] = std::max(hi[a], o.hi[a]);
+    }
+  }
+  /// Squared distance from q to the nearest point of the box (0 inside).
+  [[nodiscard]] double sq_dist(const std::array<double, 3>& q) const {
+    double d2 = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double d = std::max({double(lo[a]) - q[a], 0.0, q[a] - double(hi[a])});
+      d2 += d * d;
+    }
+    return d2;
+  }
+};
+
+/// An axis-aligned box in double. `half_open` boxes are [lo, hi); closed ones [lo, hi].
+struct Box {
+  std::array<double, 3> lo{};
+  std::array<double, 3> hi{};
+  bool half_open = true;
+
+  [[nodiscard]] bool contains(double x, double y, double z) const {
+    const std::array<double, 3> p{x, y, z};
+    for (int a = 0; a < 3; ++a) {
+      if (p[a] < lo[a] || p[a] > hi[a] || (half_open && p[a] == hi[a])) return false;
+    }
+    return true;
+  }
+  [[nodiscard]] bool contains_all(const Aabb& b) const {
+    return contains(b.lo[0], b.lo[1], b.lo[2]) && contains(b.hi[0], b.hi[1], b.hi[2]);
+  }
+  [[nodiscard]] bool misses(const Aabb& b) const {
+    for (int a = 0; a < 3; ++a) {
+      if (double(b.hi[a]) < lo[a] || double(b.lo[a]) > hi[a]) return true;
+      if (half_open && double(b.lo[a]) >= hi[a]) return true;
+    }
+    return false;
+  }
+};
+
+/// A cell of the tree: its lower corner in lattice units and its depth. The side of a cell at
+/// depth d is 2^(max_depth - d) units. Cells name walls by integers so that a wall computed via
+/// any path through the tree is the same double.
+struct Cell {
+  std::array<std::int64_t, 3> lo{};
+  int depth = 0;
+};
+
+/// Turns lattice units into anchor-frame metres: wall(G) = origin + G * unit.
+/// Quantised mode: origin = -precision_origin and G is a world lattice index, so the lattice is
+/// fixed in the world. Exact mode: origin = the root's lower corner and G counts from it.
+struct Lattice {
+  std::array<double, 3> origin{};
+  double unit = 1.0;
+  int max_depth = 0;
+
+  [[nodiscard]] std::int64_t side(int depth) const { return std::int64_t{1} << (max_depth - depth); }
+  [[nodiscard]] double wall(int axis, std::int64_t g) const {
+    return origin[axis] + double(g) * unit;
+  }
+  [[nodiscard]] bool contains(const Cell& c, const std::array<float, 3>& p) const {
+    const std::int64_t s = side(c.depth);
+    for (int a = 0; a < 3; ++a) {
+      if (double(p[a]) < wall(a, c.lo[a]) || double(p[a]) >= wall(a, c.lo[a] + s)) return false;
+    }
+    return true;
+  }
+  [[nodiscard]] bool contains(const Cell& c, const Aabb& b) const {
+    return contains(c, b.lo) && contains(c, b.hi);
+  }
+  /// Which of the eight children of `c` holds p (bit a set: upper half along axis a).
+  [[nodiscard]] int octant(const Cell& c, const std::array<float, 3>& p) const {
+    const std::int64_t half = side(c.depth) / 2;
+    int o = 0;
+    for (int a = 0; a < 3; ++a) {
+      if (double(p[a]) >= wall(a, c.lo[a] + half)) o |= 1 << a;
+    }
+    return o;
+  }
+  /// Which child of `c` holds the smaller cell `inner` (integer walls only: exact).
+  [[nodiscard]] int octant_of(const Cell& c, const Cell& inner) const {
+    const std::int64_t half = side(c.depth) / 2;
+    int o = 0;
+    for (int a = 0; a < 3; ++a) {
+      if (inner.lo[a] >= c.lo[a] + half) o |= 1 << a;
+    }
+    return o;
+  }
+  /// Whether cell `inner` lies inside cell `c`.
+  [[nodiscard]] bool encloses(const Cell& c, const Cell& inner) const {
+    for (int a = 0; a < 3; ++a) {
+      if (inner.lo[a] < c.lo[a] || inner.lo[a] + side(inner.depth) > c.lo[a] + side(c.depth)) {
+        return false;
+      }
+    }
+    return true;
+  }
+  [[nodiscard]] Cell child(const Cell& c, int octant) const {
+    const std::int64_t half = side(c.depth) / 2;
+    Cell k{c.lo, c.depth + 1};
+    for (int a = 0; a < 3; ++a) {
+      if (octant & (1 << a)) k.lo[a] += half;
+    }
+    return k;
+  }
+  /// The cell at `depth` that holds p. Floor first, then walls decide, so the answer agrees with
+  /// octant() descents exactly.
+  [[nodiscard]] Cell cell_at(int depth, const std::array<float, 3>& p) const {
+    const std::int64_t s = side(depth);
+    Cell c{{}, depth};
+    for (int a = 0; a < 3; ++a) {
+      const double units = (double(p[a]) - origin[a]) / unit;
+      std::int64_t g = std::int64_t(std::floor(units / double(s))) * s;
+      while (double(p[a]) < wall(a, g)) g -= s;
+      while (double(p[a]) >= wall(a, g + s)) g += s;
+      c.lo[a] = g;
+    }
+    return c;
+  }
+};
+
+}  // namespace eco::detail

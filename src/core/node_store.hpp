@@ -1,0 +1,102 @@
+#pragma once
+// Contiguous, index-addressed node storage with free lists: no allocation per node in steady
+// state, O(1) release.
+
+#include "core/geometry.hpp"
+
+#include <array>
+#include <cassert>
+#include <cstdint>
+#include <vector>
+
+namespace eco::detail {
+
+inline constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+
+struct Node {
+  Aabb bounds;                   // tight bounds of every point below
+  std::uint32_t count = 0;       // points below
+  std::uint32_t parent = kNone;
+  std::uint32_t link = kNone;    // leaf: head point chunk; inner: child block
+  std::uint32_t oldest = kNone;  // smallest insertion stamp below (age limit); kNone if empty
+  std::uint8_t depth = 0;
+  std::uint8_t octant = 0;       // which child of its parent
+  bool leaf = true;
+};
+
+/// Eight child slots of an inner node; kNone marks an empty octant.
+struct ChildBlock {
+  std::array<std::uint32_t, 8> child{kNone, kNone, kNone, kNone, kNone, kNone, kNone, kNone};
+};
+
+class NodeStore {
+ public:
+  std::uint32_t make_leaf(std::uint32_t parent, int octant, int depth) {
+    const std::uint32_t id = take(nodes_, free_nodes_);
+    Node& n = nodes_[id];
+    n = Node{};
+    n.parent = parent;
+    n.octant = static_cast<std::uint8_t>(octant);
+    n.depth = static_cast<std::uint8_t>(depth);
+    ++live_;
+    return id;
+  }
+  /// Turns an empty-linked leaf into an inner node with no children.
+  void make_inner(std::uint32_t id) {
+    Node& n = nodes_[id];
+    assert(n.leaf && n.link == kNone);
+    n.link = take(blocks_, free_blocks_);
+    blocks_[n.link] = ChildBlock{};
+    n.leaf = false;
+  }
+  /// Turns a childless inner node back into an empty leaf.
+  void make_leaf_of_inner(std::uint32_t id) {
+    Node& n = nodes_[id];
+    assert(!n.leaf);
+    free_blocks_.push_back(n.link);
+    n.link = kNone;
+    n.leaf = true;
+  }
+  /// Releases one node whose points and children were already released.
+  void release(std::uint32_t id) {
+    Node& n = nodes_[id];
+    if (!n.leaf) free_blocks_.push_back(n.link);
+    n.leaf = true;
+    n.link = kNone;
+    free_nodes_.push_back(id);
+    --live_;
+  }
+
+  Node& operator[](std::uint32_t id) { return nodes_[id]; }
+  const Node& operator[](std::uint32_t id) const { return nodes_[id]; }
+  std::uint32_t& child(std::uint32_t id, int octant) { return blocks_[nodes_[id].link].child[octant]; }
+  [[nodiscard]] std::uint32_t child(std::uint32_t id, int octant) const {
+    return blocks_[nodes_[id].link].child[octant];
+  }
+
+  [[nodiscard]] std::size_t live() const { return live_; }
+  [[nodiscard]] std::size_t bytes() const {
+    return nodes_.capacity() * sizeof(Node) + blocks_.capacity() * sizeof(ChildBlock) +
+           (free_nodes_.capacity() + free_blocks_.capacity()) * sizeof(std::uint32_t);
+  }
+
+ private:
+  template <class T>
+  static std::uint32_t take(std::vector<T>& pool, std::vector<std::uint32_t>& free) {
+    if (!free.empty()) {
+      const std::uint32_t id = free.back();
+      free.pop_back();
+      return id;
+    }
+    pool.emplace_back();
+    return static_cast<std::uint32_t>(pool.size() - 1);
+  }
+
+  std::vector<Node> nodes_;
+  std::vector<std::uint32_t> free_nodes_;
+  std::vector<ChildBlock> blocks_;
+  std::vector<std::uint32_t> free_blocks_;
+  std::size_t live_ = 0;
+};
+
+}  // namespace eco::detail

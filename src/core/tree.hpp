@@ -1,0 +1,95 @@
+#pragma once
+// The state behind an EgoOctree, and the structural operations the update stages share:
+// inserting a point, splitting a leaf, dissolving and collapsing subtrees, refitting bounds.
+
+#include "core/geometry.hpp"
+#include "core/node_store.hpp"
+#include "core/point_store.hpp"
+
+#include <eco/config.hpp>
+#include <eco/types.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <vector>
+
+namespace eco::detail {
+
+/// Nodes at one depth, indexed by their cell: where insertion starts instead of the root
+/// (the paper's movement-aware start depth; in Quantised mode depth k, a direct lattice lookup).
+struct StartTable {
+  int depth = 0;
+  std::int64_t per_axis = 1;
+  std::vector<std::uint32_t> slots;
+};
+
+/// The last leaf a point went into, with its cell: consecutive scan points usually share it.
+struct Finger {
+  std::uint32_t leaf = kNone;
+  Cell cell;
+};
+
+struct Tree {
+  explicit Tree(const Config& config);
+
+  Config cfg;
+  NodeStore nodes;
+  PointStore points;
+  std::uint32_t root = kNone;
+  Cell root_cell;
+  Lattice lattice;
+  int min_leaf_depth = 0;  // k in Quantised mode (the top k levels are always inner), else 0
+
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d previous_position = Eigen::Vector3d::Zero();
+  bool has_previous = false;  // a box existed before this frame
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();  // the precision origin, world
+  Box box;  // the ego box, anchor frame
+  std::uint32_t frame = 0;
+  UpdateStats last;
+
+  StartTable start;
+  Finger finger;
+  std::vector<StoredPoint> moving;  // points being re-inserted by the current stage
+  std::vector<StoredPoint> scratch;  // points of a leaf being split or a subtree collapsed
+
+  // --- geometry -----------------------------------------------------------------------------
+  /// The ego box around world position p, in the current anchor frame.
+  [[nodiscard]] Box box_around(const Eigen::Vector3d& position) const;
+  /// Anchor-frame float coordinates of a world point (the stored representation).
+  [[nodiscard]] std::array<float, 3> to_stored(const Eigen::Vector3d& world) const;
+  [[nodiscard]] Eigen::Vector3d to_world(const std::array<float, 3>& stored) const;
+  /// Points stamped before this frame are past the age limit (0 while no limit applies).
+  [[nodiscard]] std::uint32_t age_cutoff() const {
+    const std::uint32_t age = cfg.max_age_frames;
+    return age > 0 && frame > age ? frame - age : 0;
+  }
+
+  // --- structure ----------------------------------------------------------------------------
+  /// Inserts one point (which must lie in the root cell). Bounds, counts and ages of every
+  /// ancestor follow; an overfull leaf splits.
+  void insert(const StoredPoint& s);
+  /// Recomputes count, bounds and oldest stamp of `id` from its points or children.
+  void refit(std::uint32_t id);
+  /// Releases the subtree at `id` (and the node itself); appends its points to `out` if given.
+  void dissolve(std::uint32_t id, std::vector<StoredPoint>* out);
+  /// Turns inner node `id` into one leaf holding all the points below it.
+  void collapse(std::uint32_t id);
+  /// Whether `id` (inner) holds so few points that it should be one leaf.
+  [[nodiscard]] bool should_collapse(std::uint32_t id) const;
+  /// Creates the root node for root_cell (inner in Quantised mode, an empty leaf in Exact mode).
+  void make_root();
+  /// Fills the start table from the current tree.
+  void rebuild_start_table(int depth);
+  /// The child of inner node `id` (cell `cell`) at `octant`, created empty if missing.
+  std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
+
+ private:
+  std::uint32_t locate(const std::array<float, 3>& p, Cell& cell);
+  void split(std::uint32_t id, const Cell& cell);
+  void note_created(std::uint32_t id, const Cell& cell);
+  std::int64_t start_slot(const Cell& cell) const;
+};
+
+}  // namespace eco::detail

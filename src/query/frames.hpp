@@ -1,0 +1,70 @@
+#pragma once
+// Query-side helpers: moving query points into the anchor frame and results back out, and the
+// argument checks every query shares.
+
+#include "core/tree.hpp"
+
+#include <eco/types.hpp>
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace eco::detail {
+
+/// The world position of `q` given in `frame`.
+inline Eigen::Vector3d world_of(const Tree& t, const Eigen::Vector3d& q, Frame frame) {
+  return frame == Frame::Ego ? Eigen::Vector3d(q + t.pose.translation()) : q;
+}
+
+/// `q` (given in `frame`) in the anchor frame, where stored points live.
+inline std::array<double, 3> to_anchor_frame(const Tree& t, const Eigen::Vector3d& q, Frame frame) {
+  const Eigen::Vector3d w = world_of(t, q, frame);
+  return {w[0] - t.anchor[0], w[1] - t.anchor[1], w[2] - t.anchor[2]};
+}
+
+/// A stored point expressed in `frame`.
+inline Eigen::Vector3d from_stored(const Tree& t, const std::array<float, 3>& p, Frame frame) {
+  const Eigen::Vector3d w = t.to_world(p);
+  return frame == Frame::Ego ? Eigen::Vector3d(w - t.pose.translation()) : w;
+}
+
+inline void require_finite(const Eigen::Vector3d& v, const char* what, const char* name) {
+  if (!v.allFinite()) {
+    std::ostringstream s;
+    s << "eco::EgoOctree::" << what << ": " << name << " is not finite: [" << v.transpose() << "]";
+    throw std::invalid_argument(s.str());
+  }
+}
+
+inline void require_positive(double v, const char* what, const char* name, bool allow_zero) {
+  if (!std::isfinite(v) || v < 0.0 || (!allow_zero && v == 0.0)) {
+    throw std::invalid_argument(std::string("eco::EgoOctree::") + what + ": " + name + " = " +
+                                std::to_string(v) + " must be finite and " +
+                                (allow_zero ? ">= 0" : "> 0"));
+  }
+}
+
+/// Walks the leaves below `id`. keep(bounds) says 0 = skip the subtree, 1 = look inside,
+/// 2 = take the whole subtree; visit(point, whole) sees every point of the leaves reached, with
+/// `whole` true when an ancestor was taken whole (the point needs no test).
+template <class Keep, class Visit>
+void walk_leaves(const Tree& t, std::uint32_t id, Keep&& keep, Visit&& visit, bool whole = false) {
+  const Node& n = t.nodes[id];
+  if (n.count == 0) return;
+  if (!whole) {
+    const int verdict = keep(n.bounds);
+    if (verdict == 0) return;
+    whole = verdict == 2;
+  }
+  if (n.leaf) {
+    t.points.for_each(n.link, n.count, [&](const StoredPoint& s) { visit(s, whole); });
+    return;
+  }
+  for (int o = 0; o < 8; ++o) {
+    const std::uint32_t ch = t.nodes.child(id, o);
+    if (ch != kNone) walk_leaves(t, ch, keep, visit, whole);
+  }
+}
+
+}  // namespace eco::detail

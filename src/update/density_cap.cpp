@@ -1,0 +1,48 @@
+#include "update/stages.hpp"
+
+#include <cmath>
+
+namespace eco::detail {
+namespace {
+
+/// The density cell of a stored coordinate: floor(world / cell_size), world = origin + stored.
+std::int64_t density_index(double anchor, float stored, double cell_size) {
+  return std::int64_t(std::floor((anchor + double(stored)) / cell_size));
+}
+
+}  // namespace
+
+bool density_allows(const Tree& tree, const std::array<float, 3>& p) {
+  const double r = tree.cfg.density_cap.cell_size;
+  const std::uint32_t limit = tree.cfg.density_cap.max_points;
+  std::array<std::int64_t, 3> key{};
+  Box search;  // the density cell in the anchor frame, widened so rounding never hides a point
+  search.half_open = false;
+  for (int a = 0; a < 3; ++a) {
+    key[a] = density_index(tree.anchor[a], p[a], r);
+    const double margin = 1e-6 * (std::abs(tree.anchor[a]) + r + 1.0);
+    search.lo[a] = double(key[a]) * r - tree.anchor[a] - margin;
+    search.hi[a] = double(key[a] + 1) * r - tree.anchor[a] + margin;
+  }
+  std::uint32_t found = 0;
+  auto visit = [&](auto&& self, std::uint32_t id) -> bool {  // true once the cap is reached
+    const Node& n = tree.nodes[id];
+    if (n.count == 0 || search.misses(n.bounds)) return false;
+    if (!n.leaf) {
+      for (int o = 0; o < 8; ++o) {
+        const std::uint32_t ch = tree.nodes.child(id, o);
+        if (ch != kNone && self(self, ch)) return true;
+      }
+      return false;
+    }
+    tree.points.for_each(n.link, n.count, [&](const StoredPoint& s) {
+      bool same = true;
+      for (int a = 0; a < 3; ++a) same = same && density_index(tree.anchor[a], s.p[a], r) == key[a];
+      found += same ? 1 : 0;
+    });
+    return found >= limit;
+  };
+  return !visit(visit, tree.root);
+}
+
+}  // namespace eco::detail

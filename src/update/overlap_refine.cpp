@@ -1,0 +1,154 @@
+#include "update/stages.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace eco::detail {
+namespace {
+
+constexpr int kMaxStartDepth = 4;  // Exact mode: start table of at most 8^4 slots
+
+/// Where the root cell and the lattice go for the current pose.
+std::pair<Cell, Lattice> place_root(const Tree& t) {
+  Lattice lattice = t.lattice;
+  Cell cell;
+  const int depth = lattice.max_depth;
+  if (t.cfg.recentring == Recentring::Quantised) {
+    const int k = int(t.cfg.quantum_levels);
+    const double q = t.cfg.quantum();
+    lattice.unit = std::ldexp(q, k - depth);
+    for (int a = 0; a < 3; ++a) {
+      lattice.origin[a] = -t.anchor[a];
+      const std::int64_t m = std::llround(t.pose.translation()[a] / q);
+      cell.lo[a] = (m - (std::int64_t{1} << (k - 1))) * (std::int64_t{1} << (depth - k));
+    }
+  } else {
+    lattice.unit = std::ldexp(t.cfg.box_side, -depth);
+    lattice.origin = t.box.lo;
+  }
+  return {cell, lattice};
+}
+
+/// The paper's movement-aware start depth, d = min(d_max, max(0, floor(log2(L / |v|)))); in
+/// Quantised mode the lattice depth k, below which cells never move.
+int start_depth(const Tree& t) {
+  if (t.cfg.recentring == Recentring::Quantised) return int(t.cfg.quantum_levels);
+  const int cap = std::min(t.lattice.max_depth, kMaxStartDepth);
+  const double moved = (t.pose.translation() - t.previous_position).norm();
+  if (!t.has_previous || moved <= 0.0) return cap;
+  const double d = std::floor(std::log2(t.cfg.box_side / moved));
+  return d <= 0.0 ? 0 : std::min(cap, int(d));
+}
+
+// --- Quantised: re-link the depth-k subtrees ---------------------------------------------------
+
+class Relinker {
+ public:
+  explicit Relinker(Tree& tree) : t_(tree), k_(int(tree.cfg.quantum_levels)) {}
+
+  void run(const Cell& new_root) {
+    collect(t_.root, t_.root_cell);
+    t_.root_cell = new_root;
+    t_.make_root();
+    for (const auto& [id, cell] : subtrees_) {
+      if (t_.lattice.encloses(new_root, cell)) {
+        attach(id, cell);
+        ++t_.last.relinked_subtrees;
+      } else {  // cannot hold points after shift-out; dissolved for safety all the same
+        t_.dissolve(id, &t_.moving);
+        ++t_.last.rebuilt_subtrees;
+      }
+    }
+    refit_top(t_.root);
+  }
+
+ private:
+  /// Records the depth-k subtrees and releases the inner nodes above them.
+  void collect(std::uint32_t id, const Cell& cell) {
+    if (cell.depth == k_) {
+      subtrees_.emplace_back(id, cell);
+      return;
+    }
+    for (int o = 0; o < 8; ++o) {
+      const std::uint32_t ch = t_.nodes.child(id, o);
+      if (ch != kNone) collect(ch, t_.lattice.child(cell, o));
+    }
+    t_.nodes.release(id);
+  }
+
+  void attach(std::uint32_t id, const Cell& cell) {
+    std::uint32_t parent = t_.root;
+    Cell at = t_.root_cell;
+    while (at.depth < k_ - 1) {
+      const int o = t_.lattice.octant_of(at, cell);
+      parent = t_.child_or_new(parent, at, o);
+      at = t_.lattice.child(at, o);
+    }
+    const int o = t_.lattice.octant_of(at, cell);
+    t_.nodes.child(parent, o) = id;
+    t_.nodes[id].parent = parent;
+    t_.nodes[id].octant = static_cast<std::uint8_t>(o);
+  }
+
+  void refit_top(std::uint32_t id) {
+    if (t_.nodes[id].depth >= k_) return;
+    for (int o = 0; o < 8; ++o) {
+      const std::uint32_t ch = t_.nodes.child(id, o);
+      if (ch != kNone) refit_top(ch);
+    }
+    t_.refit(id);
+  }
+
+  Tree& t_;
+  int k_;
+  std::vector<std::pair<std::uint32_t, Cell>> subtrees_;
+};
+
+// --- Exact: keep what still fits, rebuild the rest ---------------------------------------------
+
+/// Node id fits `cell` under the new lattice; checks its children against their moved octants.
+void refit_exact(Tree& t, std::uint32_t id, const Cell& cell) {
+  if (t.nodes[id].leaf) return;
+  for (int o = 0; o < 8; ++o) {
+    const std::uint32_t ch = t.nodes.child(id, o);
+    if (ch == kNone) continue;
+    const Cell child_cell = t.lattice.child(cell, o);
+    if (t.lattice.contains(child_cell, t.nodes[ch].bounds)) {
+      refit_exact(t, ch, child_cell);
+      if (t.nodes[ch].count == 0) {  // everything below moved out of its octant
+        t.dissolve(ch, nullptr);
+        t.nodes.child(id, o) = kNone;
+      } else if (id == t.root) {
+        ++t.last.relinked_subtrees;
+      }
+    } else {
+      t.dissolve(ch, &t.moving);
+      t.nodes.child(id, o) = kNone;
+      ++t.last.rebuilt_subtrees;
+    }
+  }
+  t.refit(id);
+  if (t.should_collapse(id)) t.collapse(id);
+}
+
+}  // namespace
+
+void refine_overlap(Tree& tree) {
+  const auto [new_root, lattice] = place_root(tree);
+  if (tree.root == kNone) {
+    tree.lattice = lattice;
+    tree.root_cell = new_root;
+    tree.make_root();
+  } else if (tree.cfg.recentring == Recentring::Quantised) {
+    if (new_root.lo != tree.root_cell.lo) Relinker(tree).run(new_root);
+  } else if (lattice.origin != tree.lattice.origin) {
+    tree.lattice = lattice;
+    refit_exact(tree, tree.root, tree.root_cell);
+  }
+  tree.rebuild_start_table(start_depth(tree));
+  tree.last.reinserted_points += tree.moving.size();
+  for (const StoredPoint& s : tree.moving) tree.insert(s);
+  tree.moving.clear();
+}
+
+}  // namespace eco::detail

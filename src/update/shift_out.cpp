@@ -1,0 +1,69 @@
+#include "update/stages.hpp"
+
+namespace eco::detail {
+namespace {
+
+class Pruner {
+ public:
+  explicit Pruner(Tree& tree) : t_(tree), cutoff_(tree.age_cutoff()) {}
+
+  /// Prunes the subtree at id; returns true when the node itself is gone.
+  bool prune(std::uint32_t id) {
+    const Node& n = t_.nodes[id];
+    if (n.count == 0) return false;
+    if (n.oldest >= cutoff_ && t_.box.contains_all(n.bounds)) return false;
+    if (t_.box.misses(n.bounds)) {
+      t_.last.pruned += n.count;
+      t_.dissolve(id, nullptr);
+      return true;
+    }
+    if (n.leaf) {
+      filter_leaf(id);
+    } else {
+      for (int o = 0; o < 8; ++o) {
+        const std::uint32_t ch = t_.nodes.child(id, o);
+        if (ch != kNone && prune(ch)) t_.nodes.child(id, o) = kNone;
+      }
+      t_.refit(id);
+      if (t_.nodes[id].count > 0 && t_.should_collapse(id)) t_.collapse(id);
+    }
+    if (t_.nodes[id].count == 0 && id != t_.root) {
+      t_.dissolve(id, nullptr);
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  void filter_leaf(std::uint32_t id) {
+    std::vector<StoredPoint>& buffer = t_.scratch;
+    const std::size_t base = buffer.size();
+    Node& n = t_.nodes[id];
+    t_.points.drain(n.link, n.count, buffer);
+    n.count = 0;
+    for (std::size_t i = base; i < buffer.size(); ++i) {
+      const StoredPoint& s = buffer[i];
+      if (!t_.box.contains(s.p[0], s.p[1], s.p[2])) {
+        ++t_.last.pruned;
+      } else if (s.stamp < cutoff_) {
+        ++t_.last.aged_out;
+      } else {
+        t_.points.push(n.link, n.count++, s);
+      }
+    }
+    buffer.resize(base);
+    t_.refit(id);
+  }
+
+  Tree& t_;
+  std::uint32_t cutoff_ = 0;
+};
+
+}  // namespace
+
+void prune_shift_out(Tree& tree) {
+  if (tree.root == kNone) return;
+  if (Pruner(tree).prune(tree.root)) tree.make_root();  // the whole tree left: start afresh
+}
+
+}  // namespace eco::detail

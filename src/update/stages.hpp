@@ -1,0 +1,32 @@
+#pragma once
+// The four stages of one update, in the order update.cpp runs them (paper §IV, DESIGN.md §2).
+
+#include "core/tree.hpp"
+
+#include <eco/types.hpp>
+
+#include <Eigen/Geometry>
+
+namespace eco::detail {
+
+/// 1. Ego-motion: take the new pose, move the precision origin if the sensor went far from it,
+///    and place the new ego box. AABBs stay in the world; only the query box moves: O(1).
+void advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor);
+
+/// 2. Shift-out (R_out): drop subtrees whose bounds left the box, filter the leaves that straddle
+///    it, and drop points past the age limit. Subtrees wholly inside are not visited.
+void prune_shift_out(Tree& tree);
+
+/// 3. Overlap refinement (R_over): re-centre the root on the sensor. Quantised: re-link the
+///    lattice-fixed depth-k subtrees under new top levels. Exact: rebuild the subtrees whose bounds
+///    no longer fit their moved octant. Ends by re-inserting any points the stages set aside.
+void refine_overlap(Tree& tree);
+
+/// 4. Shift-in (R_in): transform the scan points the insert policy admits into the world and
+///    insert them, starting at the start-table depth rather than the root.
+void insert_shift_in(Tree& tree, ScanView scan);
+
+/// Whether the density cap admits one more point at stored position p.
+bool density_allows(const Tree& tree, const std::array<float, 3>& p);
+
+}  // namespace eco::detail

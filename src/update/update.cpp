@@ -1,0 +1,66 @@
+// EgoOctree::update — the update recipe, stage by stage (paper §IV; DESIGN.md §2).
+
+#include "update/stages.hpp"
+
+#include <eco/ego_octree.hpp>
+
+#include <sstream>
+#include <stdexcept>
+
+namespace eco {
+namespace {
+
+std::string describe(const Eigen::Isometry3d& pose) {
+  std::ostringstream s;
+  s << "[" << pose.matrix().topRows<3>().format(Eigen::IOFormat(6, 0, ", ", "; ")) << "]";
+  return s.str();
+}
+
+void check_pose(const Eigen::Isometry3d& pose, const char* name) {
+  if (!pose.matrix().allFinite()) {
+    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name + " is not finite: " +
+                                describe(pose));
+  }
+  const Eigen::Matrix3d r = pose.linear();
+  const double error = (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (error > 1e-6 || r.determinant() < 0.0) {
+    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name +
+                                " has a rotation that is not orthonormal (|R^T R - I| = " +
+                                std::to_string(error) + "): " + describe(pose));
+  }
+}
+
+void check_scan(const ScanView& scan) {
+  if (scan.count > 0 && scan.data == nullptr) {
+    throw std::invalid_argument("eco::EgoOctree: scan.data is null but scan.count = " +
+                                std::to_string(scan.count));
+  }
+  if (scan.stride < 3) {
+    throw std::invalid_argument("eco::EgoOctree: scan.stride = " + std::to_string(scan.stride) +
+                                " is below 3 floats per point");
+  }
+}
+
+}  // namespace
+
+const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
+  check_pose(world_T_sensor, "world_T_sensor");
+  check_scan(scan);
+  detail::Tree& tree = *tree_;
+  tree.last = UpdateStats{};
+  tree.last.scan_points = scan.count;
+
+  detail::advance_ego_motion(tree, world_T_sensor);  // 1. new pose, new box: O(1)
+  detail::prune_shift_out(tree);                     // 2. R_out
+  detail::refine_overlap(tree);                      // 3. R_over: re-centre the root
+  detail::insert_shift_in(tree, scan);               // 4. R_in
+  return tree.last;
+}
+
+const UpdateStats& EgoOctree::update_relative(const Eigen::Isometry3d& previous_T_current,
+                                              ScanView scan) {
+  check_pose(previous_T_current, "previous_T_current");
+  return update(tree_->pose * previous_T_current, scan);
+}
+
+}  // namespace eco

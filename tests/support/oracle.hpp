@@ -1,0 +1,175 @@
+#pragma once
+// A brute-force copy of what an EgoOctree must hold, written from the contract (DESIGN.md §1)
+// alone: a flat list of points, filtered and searched by exhaustive loops. It stores points the
+// way the contract says they are stored (float offsets from the precision origin) so that every
+// comparison can be exact.
+
+#include <eco/config.hpp>
+#include <eco/types.hpp>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+namespace eco::test {
+
+class Oracle {
+ public:
+  explicit Oracle(const Config& config) : cfg_(config) {}
+
+  /// Mirrors one update. `origin` is the precision origin the tree reports after the update.
+  void update(const Eigen::Isometry3d& pose, const std::vector<Eigen::Vector3f>& scan,
+              const Eigen::Vector3d& origin) {
+    ++frame_;
+    if (origin != origin_) {  // re-express held points against the new origin
+      const Eigen::Vector3d shift = origin_ - origin;
+      for (Held& h : held_) {
+        for (int a = 0; a < 3; ++a) h.p[a] = float(double(h.p[a]) + shift[a]);
+      }
+      origin_ = origin;
+    }
+    const bool had_box = frame_ > 1;
+    const Eigen::Vector3d previous = position_;
+    position_ = pose.translation();
+    const std::uint32_t age = cfg_.max_age_frames;
+    const std::uint32_t cutoff = age > 0 && frame_ > age ? frame_ - age : 0;
+    std::erase_if(held_, [&](const Held& h) { return !in_box(position_, h.p) || h.stamp < cutoff; });
+
+    const Eigen::Matrix3d r = pose.linear();
+    const Eigen::Vector3d t = pose.translation();
+    for (const Eigen::Vector3f& s : scan) {
+      if (!s.allFinite()) continue;
+      const Eigen::Vector3d w = r * s.cast<double>() + t;
+      const std::array<float, 3> f{float(w[0] - origin_[0]), float(w[1] - origin_[1]),
+                                   float(w[2] - origin_[2])};
+      if (!in_box(position_, f)) continue;
+      if (cfg_.insert_policy == InsertPolicy::ShiftInOnly && had_box && in_box(previous, f)) continue;
+      if (cfg_.density_cap.enabled() && density_count(f) >= cfg_.density_cap.max_points) continue;
+      held_.push_back({f, age > 0 ? frame_ : 0});
+    }
+  }
+
+  /// Held points in world coordinates, sorted.
+  [[nodiscard]] std::vector<Eigen::Vector3d> points() const {
+    std::vector<Eigen::Vector3d> out;
+    for (const Held& h : held_) out.push_back(world(h.p));
+    sort_points(out);
+    return out;
+  }
+
+  /// The k smallest squared distances from `query` (world), ascending.
+  [[nodiscard]] std::vector<double> knn_sq_dists(const Eigen::Vector3d& query, std::size_t k) const {
+    std::vector<double> d = all_sq_dists(query);
+    std::sort(d.begin(), d.end());
+    d.resize(std::min(k, d.size()));
+    return d;
+  }
+
+  /// Held points within `radius` of `query` (world), as sorted world points.
+  [[nodiscard]] std::vector<Eigen::Vector3d> radius(const Eigen::Vector3d& query, double radius) const {
+    std::vector<Eigen::Vector3d> out;
+    for (const Held& h : held_) {
+      if (sq_dist(query, h.p) <= radius * radius) out.push_back(world(h.p));
+    }
+    sort_points(out);
+    return out;
+  }
+
+  /// Held points in the closed world box [lo, hi], sorted.
+  [[nodiscard]] std::vector<Eigen::Vector3d> box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
+    std::vector<Eigen::Vector3d> out;
+    for (const Held& h : held_) {
+      bool in = true;
+      for (int a = 0; a < 3; ++a) {
+        const double v = double(h.p[a]);
+        in = in && v >= lo[a] - origin_[a] && v <= hi[a] - origin_[a];
+      }
+      if (in) out.push_back(world(h.p));
+    }
+    sort_points(out);
+    return out;
+  }
+
+  [[nodiscard]] std::vector<VoxelKey> voxel_keys(double res) const {
+    std::vector<VoxelKey> keys;
+    for (const Held& h : held_) {
+      keys.push_back({index(0, h.p[0], res), index(1, h.p[1], res), index(2, h.p[2], res)});
+    }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    return keys;
+  }
+
+  /// The squared distance the contract defines between a world query and a world point the tree
+  /// returned (both re-expressed against the precision origin, as stored).
+  [[nodiscard]] double sq_dist_to_world(const Eigen::Vector3d& query, const Eigen::Vector3d& p) const {
+    const std::array<float, 3> f{float(p[0] - origin_[0]), float(p[1] - origin_[1]), float(p[2] - origin_[2])};
+    return sq_dist(query, f);
+  }
+
+  [[nodiscard]] std::size_t size() const { return held_.size(); }
+  [[nodiscard]] const Eigen::Vector3d& position() const { return position_; }
+
+  static void sort_points(std::vector<Eigen::Vector3d>& v) {
+    std::sort(v.begin(), v.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+      return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+    });
+  }
+
+ private:
+  struct Held {
+    std::array<float, 3> p;
+    std::uint32_t stamp;
+  };
+
+  [[nodiscard]] bool in_box(const Eigen::Vector3d& centre, const std::array<float, 3>& f) const {
+    for (int a = 0; a < 3; ++a) {
+      const double lo = (centre[a] - origin_[a]) - cfg_.box_side / 2;
+      const double hi = lo + cfg_.box_side;
+      if (double(f[a]) < lo || double(f[a]) >= hi) return false;
+    }
+    return true;
+  }
+  [[nodiscard]] Eigen::Vector3d world(const std::array<float, 3>& f) const {
+    return {origin_[0] + double(f[0]), origin_[1] + double(f[1]), origin_[2] + double(f[2])};
+  }
+  [[nodiscard]] double sq_dist(const Eigen::Vector3d& query, const std::array<float, 3>& f) const {
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double d = double(f[a]) - (query[a] - origin_[a]);
+      d2 += d * d;
+    }
+    return d2;
+  }
+  [[nodiscard]] std::vector<double> all_sq_dists(const Eigen::Vector3d& query) const {
+    std::vector<double> d;
+    for (const Held& h : held_) d.push_back(sq_dist(query, h.p));
+    return d;
+  }
+  [[nodiscard]] std::int64_t index(int a, float f, double res) const {
+    return std::int64_t(std::floor((origin_[a] + double(f)) / res));
+  }
+  [[nodiscard]] std::uint32_t density_count(const std::array<float, 3>& f) const {
+    const double r = cfg_.density_cap.cell_size;
+    std::uint32_t n = 0;
+    for (const Held& h : held_) {
+      bool same = true;
+      for (int a = 0; a < 3; ++a) same = same && index(a, h.p[a], r) == index(a, f[a], r);
+      n += same ? 1 : 0;
+    }
+    return n;
+  }
+
+  Config cfg_;
+  std::vector<Held> held_;
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
+  std::uint32_t frame_ = 0;
+};
+
+}  // namespace eco::test
