@@ -1,0 +1,172 @@
+// Bad input: a clear error naming the value, and nothing lost — the tree is unchanged after a
+// rejected call. Non-finite scan points are skipped and counted, never thrown on.
+
+#include "support/compare.hpp"
+#include "support/streams.hpp"
+
+#include <limits>
+
+namespace eco::test {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Runs `call`, expects std::invalid_argument whose message contains every one of `words`.
+template <class Call>
+void expect_rejected(Call&& call, std::initializer_list<std::string> words) {
+  try {
+    call();
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    for (const std::string& w : words) EXPECT_NE(std::string(e.what()).find(w), std::string::npos) << e.what();
+  }
+}
+
+TEST(BadConfig, EachInvalidFieldIsRejectedByName) {
+  auto with = [](auto edit) {
+    Config c;
+    edit(c);
+    return c;
+  };
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.box_side = 0.0; })); }, {"box_side", "0"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.box_side = -20.0; })); }, {"box_side", "-20"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.box_side = kNaN; })); }, {"box_side", "nan"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.leaf_capacity = 0; })); }, {"leaf_capacity", "0"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.min_cell_size = -0.5; })); },
+                  {"min_cell_size", "-0.5"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.min_cell_size = 5.0; })); },
+                  {"min_cell_size", "5", "quantum"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.min_cell_size = 1e-9; })); },
+                  {"min_cell_size", "24 levels"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.quantum_levels = 0; })); }, {"quantum_levels", "0"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.quantum_levels = 9; })); }, {"quantum_levels", "9"});
+  expect_rejected(
+      [&] {
+        EgoOctree t(with([](Config& c) {
+          c.density_cap.max_points = 2;
+          c.density_cap.cell_size = 0.0;
+        }));
+      },
+      {"density_cap.cell_size", "0"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.recentring = Recentring(7); })); },
+                  {"recentring", "7"});
+  // Exact mode has no quantum: a coarse min cell is fine there.
+  EXPECT_NO_THROW(EgoOctree(with([](Config& c) {
+    c.recentring = Recentring::Exact;
+    c.min_cell_size = 5.0;
+  })));
+}
+
+class BadCalls : public ::testing::Test {
+ protected:
+  static Config all_in_box() {
+    Config c;
+    c.insert_policy = InsertPolicy::AllInBox;
+    return c;
+  }
+  void SetUp() override {
+    Stream stream(Motion::Smooth, Cloud::Surfaces, cfg_.box_side, 3u);
+    for (int t = 0; t < 5; ++t) {
+      const auto scan = stream.scan(t);
+      tree_.update(stream.pose(t), scan);
+      oracle_.update(stream.pose(t), scan, tree_.precision_origin());
+    }
+    before_ = sorted(tree_.points());
+    frames_ = tree_.frame_count();
+    pose_ = tree_.pose();
+  }
+  void expect_unchanged() {
+    EXPECT_EQ(sorted(tree_.points()), before_);
+    EXPECT_EQ(tree_.frame_count(), frames_);
+    EXPECT_TRUE(tree_.pose().isApprox(pose_, 0.0));
+    EXPECT_EQ(tree_.check_invariants(), "");
+    std::mt19937 rng(1);
+    expect_same_answers(tree_, oracle_, rng, "after a rejected call");
+  }
+
+  Config cfg_ = all_in_box();
+  EgoOctree tree_{cfg_};
+  Oracle oracle_{cfg_};
+  std::vector<Eigen::Vector3d> before_;
+  std::uint32_t frames_ = 0;
+  Eigen::Isometry3d pose_;
+  std::vector<Eigen::Vector3f> scan_{{1.f, 2.f, 3.f}, {-4.f, 0.5f, 1.f}};
+};
+
+TEST_F(BadCalls, NonFinitePoseIsRejectedAndTreeUnchanged) {
+  for (double bad : {kNaN, kInf, -kInf}) {
+    Eigen::Isometry3d pose = pose_;
+    pose.translation().x() = bad;
+    expect_rejected([&] { tree_.update(pose, scan_); }, {"world_T_sensor", "not finite"});
+    pose = pose_;
+    pose.linear()(1, 2) = bad;
+    expect_rejected([&] { tree_.update(pose, scan_); }, {"world_T_sensor"});
+    Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
+    delta.translation().z() = bad;
+    expect_rejected([&] { tree_.update_relative(delta, scan_); }, {"previous_T_current"});
+  }
+  expect_unchanged();
+}
+
+TEST_F(BadCalls, NonOrthonormalRotationIsRejected) {
+  Eigen::Isometry3d scaled = pose_;
+  scaled.linear() *= 1.01;
+  expect_rejected([&] { tree_.update(scaled, scan_); }, {"world_T_sensor", "orthonormal"});
+  Eigen::Isometry3d mirrored = pose_;
+  mirrored.linear().col(0) *= -1.0;
+  expect_rejected([&] { tree_.update(mirrored, scan_); }, {"orthonormal"});
+  expect_unchanged();
+}
+
+TEST_F(BadCalls, MalformedScanViewIsRejected) {
+  expect_rejected([&] { tree_.update(pose_, ScanView(nullptr, 10)); }, {"scan.data", "10"});
+  expect_rejected([&] { tree_.update(pose_, ScanView(scan_.front().data(), 2, 2)); }, {"scan.stride = 2"});
+  expect_unchanged();
+}
+
+TEST_F(BadCalls, BadQueryArgumentsAreRejected) {
+  const Eigen::Vector3d nan_query(kNaN, 0, 0);
+  expect_rejected([&] { (void)tree_.knn(nan_query, 3); }, {"knn", "query", "nan"});
+  expect_rejected([&] { (void)tree_.radius(Eigen::Vector3d::Zero(), -1.0); }, {"radius = -1"});
+  expect_rejected([&] { (void)tree_.radius(Eigen::Vector3d::Zero(), kInf); }, {"radius = inf"});
+  expect_rejected([&] { (void)tree_.radius(nan_query, 1.0); }, {"radius", "query"});
+  expect_rejected([&] { (void)tree_.box(Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 1)); },
+                  {"box", "lo", "exceeds hi"});
+  expect_rejected([&] { (void)tree_.box(nan_query, Eigen::Vector3d::Ones()); }, {"box", "lo", "nan"});
+  expect_rejected([&] { (void)tree_.voxelize(-0.1); }, {"resolution = -0.1"});
+  expect_rejected([&] { (void)tree_.voxel_keys(0.0); }, {"resolution = 0"});
+  expect_rejected([&] { (void)tree_.voxel_keys(kNaN); }, {"resolution = nan"});
+  expect_unchanged();
+}
+
+TEST_F(BadCalls, NonFinitePointsAreSkippedAndCounted) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  std::vector<Eigen::Vector3f> scan = {{nan, 0, 0}, {1, 1, 1}, {0, inf, 0}, {0, 0, -inf}, {2, -1, 0.5f}, {nan, nan, nan}};
+  Eigen::Isometry3d pose = pose_;
+  pose.translation().x() += 0.5;
+  const UpdateStats& st = tree_.update(pose, scan);
+  oracle_.update(pose, scan, tree_.precision_origin());
+  EXPECT_EQ(st.skipped_nonfinite, 4u);
+  EXPECT_EQ(st.inserted, 2u);
+  std::mt19937 rng(2);
+  expect_same_answers(tree_, oracle_, rng, "after NaN points");
+}
+
+TEST(EmptyTree, QueriesAnswerNothing) {
+  EgoOctree tree;
+  EXPECT_TRUE(tree.knn(Eigen::Vector3d::Zero(), 3).empty());
+  EXPECT_TRUE(tree.radius(Eigen::Vector3d::Zero(), 5.0).empty());
+  EXPECT_TRUE(tree.box(-Eigen::Vector3d::Ones(), Eigen::Vector3d::Ones()).empty());
+  EXPECT_TRUE(tree.voxel_keys(0.5).empty());
+  EXPECT_TRUE(tree.points().empty());
+  EXPECT_EQ(tree.size(), 0u);
+  EXPECT_TRUE(tree.ego_box().isEmpty());
+  EXPECT_EQ(tree.check_invariants(), "");
+  tree.update(Eigen::Isometry3d::Identity(), ScanView());  // an empty scan is fine
+  EXPECT_EQ(tree.size(), 0u);
+  EXPECT_TRUE(tree.knn(Eigen::Vector3d::Zero(), 3).empty());
+}
+
+}  // namespace
+}  // namespace eco::test
