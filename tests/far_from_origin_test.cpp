@@ -4,6 +4,7 @@
 // and jumps 400 m every tenth frame.
 
 #include "support/compare.hpp"
+#include "support/streams.hpp"
 
 #include <random>
 
@@ -67,10 +68,6 @@ TEST_P(FarFromOrigin, AnswersAgreeWithDoubleBruteForceWithinOneMillimetre) {
     }
   }
   EXPECT_GE(rebases, 1) << "the drive should have moved the precision origin";
-}
-
-std::string mode_name(const ::testing::TestParamInfo<Recentring>& param) {
-  return param.param == Recentring::Exact ? "Exact" : "Quantised";
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, FarFromOrigin, ::testing::Values(Recentring::Quantised, Recentring::Exact),

@@ -14,6 +14,7 @@
 // frames in full.
 
 #include "support/compare.hpp"
+#include "support/streams.hpp"
 #include "support/hashed_world.hpp"
 
 #include <cstdio>
@@ -68,10 +69,6 @@ TEST_P(LongDrive, MemoryAndDepthStayBoundedOverFiveThousandFrames) {
     }
   }
   EXPECT_GT(tree.size(), 1000u);  // the drive really kept a populated map
-}
-
-std::string mode_name(const ::testing::TestParamInfo<Recentring>& param) {
-  return param.param == Recentring::Exact ? "Exact" : "Quantised";
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, LongDrive, ::testing::Values(Recentring::Quantised, Recentring::Exact),

@@ -57,8 +57,7 @@ TEST_P(OracleStream, HeldSetAndQueriesMatchBruteForceEveryFrame) {
 
 std::string param_name(const ::testing::TestParamInfo<Params>& info) {
   const auto [recentring, policy, motion, cloud, shape] = info.param;
-  return std::string(recentring == Recentring::Exact ? "Exact" : "Quantised") +
-         (policy == InsertPolicy::ShiftInOnly ? "_ShiftIn_" : "_AllInBox_") + name(motion) + "_" +
+  return name(recentring) + (policy == InsertPolicy::ShiftInOnly ? "_ShiftIn_" : "_AllInBox_") + name(motion) + "_" +
          name(cloud) + "_Shape" + std::to_string(shape);
 }
 

@@ -2,6 +2,8 @@
 // Deterministic pose-and-scan streams for the oracle tests: motion patterns times point
 // distributions, seeded.
 
+#include <eco/config.hpp>
+
 #include <Eigen/Geometry>
 
 #include <cmath>
@@ -9,6 +11,8 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 namespace eco::test {
 
@@ -23,6 +27,9 @@ inline std::string name(Cloud c) {
   const char* names[] = {"Uniform", "Surfaces", "Duplicates", "Few"};
   return names[int(c)];
 }
+
+inline std::string name(Recentring r) { return r == Recentring::Exact ? "Exact" : "Quantised"; }
+inline std::string mode_name(const ::testing::TestParamInfo<Recentring>& param) { return name(param.param); }
 
 /// A sensor moving by `motion` through scans shaped by `cloud`, for a box of side `box_side`.
 class Stream {
