@@ -19,7 +19,9 @@ constexpr int kDeepestLevel = 24;  // cells 2^-24 of the root: far below any LiD
 
 double Config::quantum() const {
   if (recentring == Recentring::Exact) return 0.0;
-  return box_side / double((1u << quantum_levels) - 1u);
+  // q * 2^k = L + q exactly would let the box touch the root's walls when the sensor sits on a
+  // half-quantum tie; a relative 1e-9 margin keeps it strictly inside despite rounding.
+  return box_side / double((1u << quantum_levels) - 1u) * (1.0 + 1e-9);
 }
 
 double Config::root_side() const {

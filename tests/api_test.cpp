@@ -108,3 +108,32 @@ TEST(Api, UpdateStatsCountWhatHappened) {
 
 }  // namespace
 }  // namespace eco::test
+
+namespace eco::test {
+namespace {
+
+TEST(Api, SensorOnAQuantumTieKeepsEdgePointsInTheirCells) {
+  for (std::uint32_t k : {1u, 2u, 3u, 4u}) {
+    Config cfg;
+    cfg.quantum_levels = k;
+    cfg.min_cell_size = 0.01;
+    cfg.insert_policy = InsertPolicy::AllInBox;
+    EgoOctree tree(cfg);
+    Oracle oracle(cfg);
+    const double q = cfg.box_side / double((1u << k) - 1u);
+    for (int t = 0; t < 6; ++t) {
+      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+      pose.translation() = Eigen::Vector3d::Constant((t + 0.5) * q);  // exactly between lattice steps
+      std::vector<Eigen::Vector3f> scan;
+      const float edge = float(-cfg.box_side / 2);
+      for (float y : {edge, 0.f, -edge * 0.999f}) scan.push_back({edge, y, edge});
+      tree.update(pose, scan);
+      oracle.update(pose, scan, tree.precision_origin());
+      ASSERT_EQ(tree.check_invariants(), "") << "k = " << k << ", frame " << t;
+      ASSERT_EQ(sorted(tree.points()), oracle.points());
+    }
+  }
+}
+
+}  // namespace
+}  // namespace eco::test

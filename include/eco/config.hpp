@@ -52,7 +52,8 @@ struct Config {
   /// Throws std::invalid_argument naming the field and value when the configuration is unusable.
   void validate() const;
 
-  /// The re-centring quantum q [m]; 0 in Exact mode.
+  /// The re-centring quantum q = L / (2^k - 1) [m] (widened by 1e-9 relative, so the box stays
+  /// strictly inside the root cell under rounding); 0 in Exact mode.
   [[nodiscard]] double quantum() const;
   /// Side [m] of the root cell: L in Exact mode, q * 2^k (>= L + q) in Quantised mode.
   [[nodiscard]] double root_side() const;
