@@ -10,6 +10,30 @@ std::int64_t density_index(double anchor, float stored, double cell_size) {
   return std::int64_t(std::floor((anchor + double(stored)) / cell_size));
 }
 
+/// The deepest node whose cell holds all of `search` (points lie in their cells, so every point
+/// in `search` is below it).
+std::uint32_t enclosing_node(const Tree& tree, const Box& search) {
+  std::uint32_t id = tree.root;
+  Cell cell = tree.root_cell;
+  while (!tree.nodes[id].leaf) {
+    const std::int64_t half = tree.lattice.side(cell.depth) / 2;
+    int octant = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double wall = tree.lattice.wall(a, cell.lo[a] + half);
+      if (search.lo[a] >= wall) {
+        octant |= 1 << a;
+      } else if (search.hi[a] >= wall) {
+        return id;  // straddles this wall
+      }
+    }
+    const std::uint32_t child = tree.nodes.child(id, octant);
+    if (child == kNone) return id;  // nothing there; the walk below finds nothing quickly
+    id = child;
+    cell = tree.lattice.child(cell, octant);
+  }
+  return id;
+}
+
 }  // namespace
 
 bool density_allows(const Tree& tree, const std::array<float, 3>& p) {
@@ -36,13 +60,14 @@ bool density_allows(const Tree& tree, const std::array<float, 3>& p) {
       return false;
     }
     tree.points.for_each(n.link, n.count, [&](const StoredPoint& s) {
+      if (!search.contains(s.p[0], s.p[1], s.p[2])) return;  // cheap pre-test; floor decides
       bool same = true;
       for (int a = 0; a < 3; ++a) same = same && density_index(tree.anchor[a], s.p[a], r) == key[a];
       found += same ? 1 : 0;
     });
     return found >= limit;
   };
-  return !visit(visit, tree.root);
+  return !visit(visit, enclosing_node(tree, search));
 }
 
 }  // namespace eco::detail
