@@ -10,6 +10,12 @@
 
 namespace eco::detail {
 
+/// Index of the world-aligned grid cell of side `size` holding a stored coordinate:
+/// floor((origin + stored) / size). Density cells and voxels both use it.
+inline std::int64_t world_grid_index(double origin, float stored, double size) {
+  return std::int64_t(std::floor((origin + double(stored)) / size));
+}
+
 /// Tight bounds of the points below a node (float, like the points).
 struct Aabb {
   std::array<float, 3> lo{inf(), inf(), inf()};

@@ -60,6 +60,19 @@ struct Tree {
   /// Anchor-frame float coordinates of a world point (the stored representation).
   [[nodiscard]] std::array<float, 3> to_stored(const Eigen::Vector3d& world) const;
   [[nodiscard]] Eigen::Vector3d to_world(const std::array<float, 3>& stored) const;
+  /// Whether held point `s` stays this frame: inside the box and within the age limit. Counts
+  /// what it drops in `last` (pruned takes precedence over aged).
+  bool keeps(const StoredPoint& s) {
+    if (!box.contains(s.p[0], s.p[1], s.p[2])) {
+      ++last.pruned;
+      return false;
+    }
+    if (s.stamp < age_cutoff()) {
+      ++last.aged_out;
+      return false;
+    }
+    return true;
+  }
   /// Points stamped before this frame are past the age limit (0 while no limit applies).
   [[nodiscard]] std::uint32_t age_cutoff() const {
     const std::uint32_t age = cfg.max_age_frames;

@@ -6,6 +6,7 @@
 
 #include <eco/types.hpp>
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>

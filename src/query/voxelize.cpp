@@ -15,9 +15,7 @@ std::vector<VoxelKey> EgoOctree::voxel_keys(double resolution) const {
   std::vector<VoxelKey> keys;
   if (t.root == detail::kNone) return keys;
   keys.reserve(size());
-  auto index = [&](int a, float stored) {
-    return std::int64_t(std::floor((t.anchor[a] + double(stored)) / resolution));
-  };
+  auto index = [&](int a, float stored) { return detail::world_grid_index(t.anchor[a], stored, resolution); };
   detail::walk_leaves(
       t, t.root, [](const detail::Aabb&) { return 2; },
       [&](const detail::StoredPoint& s, bool) {

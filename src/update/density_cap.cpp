@@ -5,11 +5,6 @@
 namespace eco::detail {
 namespace {
 
-/// The density cell of a stored coordinate: floor(world / cell_size), world = origin + stored.
-std::int64_t density_index(double anchor, float stored, double cell_size) {
-  return std::int64_t(std::floor((anchor + double(stored)) / cell_size));
-}
-
 /// The deepest node whose cell holds all of `search` (points lie in their cells, so every point
 /// in `search` is below it).
 std::uint32_t enclosing_node(const Tree& tree, const Box& search) {
@@ -43,7 +38,7 @@ bool density_allows(const Tree& tree, const std::array<float, 3>& p) {
   Box search;  // the density cell in the anchor frame, widened so rounding never hides a point
   search.half_open = false;
   for (int a = 0; a < 3; ++a) {
-    key[a] = density_index(tree.anchor[a], p[a], r);
+    key[a] = world_grid_index(tree.anchor[a], p[a], r);
     const double margin = 1e-6 * (std::abs(tree.anchor[a]) + r + 1.0);
     search.lo[a] = double(key[a]) * r - tree.anchor[a] - margin;
     search.hi[a] = double(key[a] + 1) * r - tree.anchor[a] + margin;
@@ -62,7 +57,7 @@ bool density_allows(const Tree& tree, const std::array<float, 3>& p) {
     tree.points.for_each(n.link, n.count, [&](const StoredPoint& s) {
       if (!search.contains(s.p[0], s.p[1], s.p[2])) return;  // cheap pre-test; floor decides
       bool same = true;
-      for (int a = 0; a < 3; ++a) same = same && density_index(tree.anchor[a], s.p[a], r) == key[a];
+      for (int a = 0; a < 3; ++a) same = same && world_grid_index(tree.anchor[a], s.p[a], r) == key[a];
       found += same ? 1 : 0;
     });
     return found >= limit;

@@ -24,13 +24,7 @@ void rebase(Tree& tree, const Eigen::Vector3d& new_anchor) {
   tree.root = kNone;
   for (StoredPoint s : held) {
     for (int a = 0; a < 3; ++a) s.p[a] = float(double(s.p[a]) + shift[a]);
-    if (!tree.box.contains(s.p[0], s.p[1], s.p[2])) {
-      ++tree.last.pruned;
-    } else if (s.stamp < tree.age_cutoff()) {
-      ++tree.last.aged_out;
-    } else {
-      tree.moving.push_back(s);
-    }
+    if (tree.keeps(s)) tree.moving.push_back(s);
   }
   tree.last.rebased = true;
   tree.last.rebuilt_subtrees += 1;

@@ -42,14 +42,7 @@ class Pruner {
     t_.points.drain(n.link, n.count, buffer);
     n.count = 0;
     for (std::size_t i = base; i < buffer.size(); ++i) {
-      const StoredPoint& s = buffer[i];
-      if (!t_.box.contains(s.p[0], s.p[1], s.p[2])) {
-        ++t_.last.pruned;
-      } else if (s.stamp < cutoff_) {
-        ++t_.last.aged_out;
-      } else {
-        t_.points.push(n.link, n.count++, s);
-      }
+      if (t_.keeps(buffer[i])) t_.points.push(n.link, n.count++, buffer[i]);
     }
     buffer.resize(base);
     t_.refit(id);
