@@ -27,9 +27,6 @@ struct Aabb {
     lo = {std::min(lo[0], x), std::min(lo[1], y), std::min(lo[2], z)};
     hi = {std::max(hi[0], x), std::max(hi[1], y), std::max(hi[2], z)};
   }
-  [[nodiscard]] bool contains(float x, float y, float z) const {
-    return x >= lo[0] && x <= hi[0] && y >= lo[1] && y <= hi[1] && z >= lo[2] && z <= hi[2];
-  }
   void merge(const Aabb& o) {
     for (int a = 0; a < 3; ++a) {
       lo[a] = std::min(lo[a], o.lo[a]);
