@@ -3,7 +3,7 @@
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
 JOBS       ?= $(shell nproc)
-DEBIAN_PACKAGES := cmake make g++ libeigen3-dev libgtest-dev
+DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev libeigen3-dev libgtest-dev liblzf-dev
 
 .PHONY: all deps build demo test test-release test-sanitize install clean
 

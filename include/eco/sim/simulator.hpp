@@ -1,0 +1,88 @@
+#pragma once
+/// @file simulator.hpp
+/// A LiDAR simulator for running ECO with no download: a procedural city (road, kerbs and
+/// sidewalks, building façades, poles, trees, parked cars) with cars driving their own routes,
+/// scanned by an HDL-64E-like sensor on a vehicle that drives the streets at 10 Hz.
+/// Deterministic: the same configuration and seed give the same bytes on every machine.
+/// Frames are computed on demand (random access), and can be written in KITTI's layout with
+/// SemanticKITTI labels marking the returns that hit moving cars.
+
+#include <eco/io/point_cloud.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+namespace eco::sim {
+
+/// The sensor: beams spread evenly over the vertical field of view, columns over 360 degrees.
+struct LidarModel {
+  int beams = 64;
+  double fov_up_deg = 2.0;
+  double fov_down_deg = -24.9;
+  int columns = 2000;
+  double min_range = 2.5;          ///< [m] nearer returns are dropped (the vehicle itself)
+  double max_range = 120.0;        ///< [m]
+  double range_noise = 0.02;       ///< [m] standard deviation of Gaussian range noise
+  double dropout = 0.02;           ///< probability that a return is lost
+  double mount_height = 1.73;      ///< [m] above the road, as on KITTI's car
+};
+
+/// The city: a grid of streets `block_pitch` apart; everything else is drawn from the seed.
+struct CityModel {
+  double block_pitch = 80.0;       ///< [m] between parallel street centre lines
+  double road_half_width = 7.0;    ///< [m] centre line to kerb
+  double lane_offset = 2.5;        ///< [m] centre line to the middle of the right-hand lane
+  double turn_radius = 7.0;        ///< [m] of the centre line through a corner
+  int moving_cars = 16;            ///< cars that drive their own routes
+  double parked_car_chance = 0.5;  ///< per kerb-side parking slot
+};
+
+struct SimConfig {
+  std::uint64_t seed = 1;
+  std::size_t frames = 100;
+  double rate_hz = 10.0;
+  double speed = 10.0;             ///< [m/s] of the sensor vehicle: 1 m per frame at 10 Hz
+  double sway_deg = 0.3;           ///< amplitude of the vehicle's roll and pitch
+  LidarModel lidar;
+  CityModel city;
+
+  /// Throws std::invalid_argument naming the first field out of range.
+  void validate() const;
+};
+
+struct SimFrame {
+  std::size_t index = 0;
+  double time = 0.0;                                ///< [s] index / rate_hz
+  Eigen::Isometry3d world_T_lidar = Eigen::Isometry3d::Identity();
+  io::PointCloud cloud;                             ///< lidar frame, with reflectance in [0, 1]
+  std::vector<std::uint32_t> labels;                ///< SemanticKITTI id per point (io::label)
+};
+
+class Simulator {
+ public:
+  explicit Simulator(const SimConfig& config = {});
+  ~Simulator();
+  Simulator(Simulator&&) noexcept;
+  Simulator& operator=(Simulator&&) noexcept;
+
+  [[nodiscard]] std::size_t size() const;           ///< config().frames
+  /// Frame `index` (any order; throws std::out_of_range past size()).
+  [[nodiscard]] SimFrame frame(std::size_t index) const;
+  [[nodiscard]] Eigen::Isometry3d pose(std::size_t index) const;
+  [[nodiscard]] const SimConfig& config() const;
+  [[nodiscard]] std::size_t static_shape_count() const;
+
+  /// Writes every frame to `folder` in KITTI's layout: velodyne/, labels/, poses.txt
+  /// (camera-frame, with calib.txt holding KITTI's Tr) and times.txt.
+  void write_kitti(const std::filesystem::path& folder) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace eco::sim
