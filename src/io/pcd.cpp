@@ -22,6 +22,7 @@ struct Header {
   std::vector<char> types;
   std::vector<std::size_t> counts;
   std::optional<std::size_t> width, height, points;
+  std::size_t points_line = 0;
   std::string data;
 };
 
@@ -54,6 +55,7 @@ Header parse_header(TextCursor& cursor) {
       if (words.size() != 2) cursor.fail("expected '" + std::string(key) + " <count>'");
       const std::size_t value = cursor.number<std::size_t>(words[1]);
       (key == "WIDTH" ? h.width : key == "HEIGHT" ? h.height : h.points) = value;
+      if (key == "POINTS") h.points_line = cursor.line_number();
     } else if (key == "DATA") {
       if (words.size() != 2) cursor.fail("expected 'DATA ascii|binary|binary_compressed'");
       h.data = std::string(words[1]);
@@ -91,7 +93,8 @@ std::size_t point_count(const Header& h, const TextCursor& cursor) {
   if (height != 0 && *h.width > SIZE_MAX / height) cursor.fail("WIDTH x HEIGHT overflows");
   const std::size_t n = *h.width * height;
   if (h.points && *h.points != n) {
-    cursor.fail("POINTS " + std::to_string(*h.points) + " differs from WIDTH x HEIGHT = " + std::to_string(n));
+    throw Error(cursor.source(), at_line(h.points_line),
+                "POINTS " + std::to_string(*h.points) + " differs from WIDTH x HEIGHT = " + std::to_string(n));
   }
   return n;
 }
