@@ -2,10 +2,11 @@
 
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
+FUZZ_BUILD ?= build-fuzz
 JOBS       ?= $(shell nproc)
 DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev libeigen3-dev libgtest-dev liblzf-dev
 
-.PHONY: all deps build demo test test-release test-sanitize install clean
+.PHONY: all deps build demo test test-release test-sanitize test-fuzz install clean
 
 all: build
 
@@ -20,8 +21,10 @@ build: deps
 demo: build
 	$(BUILD)/examples/eco_demo
 
-## test: every test, in a release build and again under AddressSanitizer + UBSan.
-test: test-release test-sanitize
+## test: every test, in a release build and again under AddressSanitizer + UBSan, then each
+## parser's libFuzzer target for a fixed time (FUZZ_SECONDS) under the same sanitizers.
+FUZZ_SECONDS ?= 10
+test: test-release test-sanitize test-fuzz
 
 test-release: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
@@ -31,10 +34,16 @@ test-sanitize: deps
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
+test-fuzz: deps
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DECO_FUZZ=ON \
+	  -DECO_BUILD_TESTS=OFF -DECO_BUILD_EXAMPLES=OFF -DECO_FUZZ_SECONDS=$(FUZZ_SECONDS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+	ctest --test-dir $(FUZZ_BUILD) --output-on-failure -j $(JOBS)
+
 ## install: into PREFIX (default /usr/local).
 PREFIX ?= /usr/local
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

@@ -6,4 +6,7 @@ function(eco_target_defaults target)
                                              -fno-sanitize-recover=all -O1)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
+  if(ECO_FUZZ)  # coverage for libFuzzer; the fuzz executables add -fsanitize=fuzzer at link
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
+  endif()
 endfunction()
