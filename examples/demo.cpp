@@ -1,9 +1,8 @@
-// make demo: streams a generated street through ECO, both re-centring modes side by side, and
-// prints per-frame figures. Usage: eco_demo [frames]
-
-#include "street_scene.hpp"
+// make demo: streams the simulator's city (eco::sim) through ECO, both re-centring modes side
+// by side, and prints per-frame figures. Usage: eco_demo [frames]
 
 #include <eco/eco.hpp>
+#include <eco/sim/simulator.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -26,17 +25,21 @@ int main(int argc, char** argv) {
   eco::Config exact = config;
   exact.recentring = eco::Recentring::Exact;
   eco::EgoOctree tree(config), paper(exact);
-  eco::demo::StreetScene scene;
+  eco::sim::SimConfig city;
+  city.frames = static_cast<std::size_t>(std::max(frames, 1));
+  const eco::sim::Simulator scene(city);
   std::mt19937 rng(7);
 
-  std::printf("ECO %s demo: a generated street, %d frames, L = %.0f m, N_max = %u\n", eco::kVersion,
-              frames, config.box_side, config.leaf_capacity);
+  std::printf("ECO %s demo: a simulated city drive (HDL-64E-like, seed %llu), %d frames, L = %.0f m, N_max = %u\n",
+              eco::kVersion, static_cast<unsigned long long>(city.seed), frames, config.box_side,
+              config.leaf_capacity);
   std::printf("%5s %8s %8s %7s %8s %8s %7s %6s %9s %9s %9s\n", "frame", "scan", "inserted", "pruned",
               "held", "nodes", "depth", "B/pt", "eco ms", "exact ms", "knn us");
   double eco_total = 0.0, exact_total = 0.0;
   for (int t = 0; t < frames; ++t) {
-    const Eigen::Isometry3d pose = scene.pose(t);
-    const std::vector<Eigen::Vector3f> scan = scene.scan(t);
+    const eco::sim::SimFrame frame = scene.frame(static_cast<std::size_t>(t));
+    const Eigen::Isometry3d& pose = frame.world_T_lidar;
+    const eco::ScanView scan = frame.cloud.view();
     auto start = std::chrono::steady_clock::now();
     const eco::UpdateStats st = tree.update(pose, scan);
     const double eco_ms = ms_since(start);
