@@ -10,3 +10,16 @@ function(eco_target_defaults target)
     target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
   endif()
 endfunction()
+
+# eco_library(<target> <export-name> SOURCES ... LINK ...): one of the libraries beside the core,
+# reachable as eco::<export-name> in this build and after install; LINK takes
+# target_link_libraries' arguments (PUBLIC ... PRIVATE ...).
+function(eco_library target export_name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LINK" ${ARGN})
+  add_library(${target} ${ARG_SOURCES})
+  add_library(eco::${export_name} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${export_name} POSITION_INDEPENDENT_CODE ON)
+  target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR}/src)
+  target_link_libraries(${target} ${ARG_LINK})
+  eco_target_defaults(${target})
+endfunction()
