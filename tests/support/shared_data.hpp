@@ -1,6 +1,7 @@
 #pragma once
-// Where the real KITTI and BALM frames are: $ECO_DATA_DIR, else ../shared/data beside the
-// checkout. Tests that need them skip, saying where they looked, when they are absent.
+// Where the real KITTI and BALM frames are: $ECO_DATA_DIR, else shared/data in the folder that
+// holds the checkout or the nearest folder above it that has one. Tests that need them skip,
+// saying where they looked, when they are absent.
 
 #include <cstdlib>
 #include <filesystem>
@@ -11,7 +12,12 @@ namespace eco::test {
 
 inline std::filesystem::path shared_data_dir() {
   if (const char* env = std::getenv("ECO_DATA_DIR"); env && *env) return env;
-  return std::filesystem::path(ECO_SOURCE_DIR) / ".." / "shared" / "data";
+  const auto checkout = std::filesystem::absolute(ECO_SOURCE_DIR).lexically_normal();
+  for (auto folder = checkout.parent_path(); !folder.empty(); folder = folder.parent_path()) {
+    if (std::filesystem::is_directory(folder / "shared" / "data")) return folder / "shared" / "data";
+    if (folder == folder.root_path()) break;
+  }
+  return checkout.parent_path() / "shared" / "data";
 }
 
 /// The named dataset's folder, or nullopt when it is absent.
