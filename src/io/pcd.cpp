@@ -152,6 +152,7 @@ std::string pack_compressed(const PointCloud& cloud) {
   std::string packed(fields.size() + fields.size() / 16 + 64, '\0');
   const unsigned int size = fields.empty() ? 0 : lzf_compress(fields.data(), static_cast<unsigned>(fields.size()),
                                                               packed.data(), static_cast<unsigned>(packed.size()));
+  if (size == 0 && !fields.empty()) throw Error("PCD output", "", "LZF compression failed");
   std::string out(8, '\0');
   const auto sizes = std::array<std::uint32_t, 2>{size, static_cast<std::uint32_t>(fields.size())};
   std::memcpy(out.data(), sizes.data(), 8);
