@@ -109,9 +109,13 @@ void RecordLayout::read_binary(std::string_view bytes, std::size_t offset, std::
 void RecordLayout::read_ascii(TextCursor& cursor, std::size_t count, PointCloud& cloud) const {
   cloud.points.reserve(std::min<std::size_t>(count, 1u << 20));
   if (intensity_) cloud.intensity.reserve(cloud.points.capacity());
-  const auto value = [&](const std::vector<std::string_view>& words, std::size_t field) {
-    return cursor.number<float>(words[fields_[field].first_value]);
-  };
+  // What each number of a record is for: 0..2 x, y, z, 3 intensity, -1 checked and skipped.
+  std::vector<int> role(values_, -1);
+  role[fields_[x_].first_value] = 0;
+  role[fields_[y_].first_value] = 1;
+  role[fields_[z_].first_value] = 2;
+  if (intensity_) role[fields_[*intensity_].first_value] = 3;
+  float kept[4] = {};
   for (std::size_t i = 0; i < count; ++i) {
     if (!cursor.next_line()) {
       cursor.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(count) +
@@ -122,9 +126,12 @@ void RecordLayout::read_ascii(TextCursor& cursor, std::size_t count, PointCloud&
       cursor.fail("expected " + std::to_string(values_) + " numbers, found " +
                   std::to_string(words.size()));
     }
-    for (const auto word : words) (void)cursor.number<double>(word);  // every number well formed
-    cloud.points.emplace_back(value(words, x_), value(words, y_), value(words, z_));
-    if (intensity_) cloud.intensity.push_back(value(words, *intensity_));
+    for (std::size_t k = 0; k < words.size(); ++k) {  // each number parsed once, all well formed
+      if (role[k] < 0) (void)cursor.number<double>(words[k]);
+      else kept[role[k]] = cursor.number<float>(words[k]);
+    }
+    cloud.points.emplace_back(kept[0], kept[1], kept[2]);
+    if (intensity_) cloud.intensity.push_back(kept[3]);
   }
 }
 

@@ -107,8 +107,10 @@ SimFrame Simulator::frame(std::size_t index) const {
   const Eigen::Matrix3d rotation = frame.world_T_lidar.linear();
   std::vector<TurnedBox> cars;  // the moving cars within reach at this instant
   for (const MovingCar& car : impl_->city.cars) {
+    const std::size_t before = cars.size();
     car_bodies(impl_->city, car, c.city.lane_offset, frame.time, cars);
-    if ((cars[cars.size() - 2].centre - origin).head<2>().norm() > lidar.max_range + 5.0) cars.resize(cars.size() - 2);
+    const bool out_of_reach = (cars[before].centre - origin).head<2>().norm() > lidar.max_range + 5.0;
+    if (out_of_reach) cars.resize(before);
   }
 
   Rng rng(c.seed, 0x5CA7000000000000ull + index);
