@@ -4,7 +4,8 @@ BUILD      ?= build
 ASAN_BUILD ?= build-asan
 FUZZ_BUILD ?= build-fuzz
 JOBS       ?= $(shell nproc)
-DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev libeigen3-dev libgtest-dev liblzf-dev
+DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev libeigen3-dev libgtest-dev liblzf-dev \
+                   libnanoflann-dev libcli11-dev nlohmann-json3-dev
 
 .PHONY: all deps build demo test test-release test-sanitize test-fuzz install clean
 

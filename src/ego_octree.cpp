@@ -3,6 +3,7 @@
 
 #include "core/tree.hpp"
 #include "query/frames.hpp"
+#include "query/queries.hpp"
 
 #include <eco/ego_octree.hpp>
 
@@ -31,11 +32,7 @@ Eigen::AlignedBox3d EgoOctree::ego_box() const {
 }
 
 void EgoOctree::for_each_point(const std::function<void(const Eigen::Vector3d&)>& visit) const {
-  const detail::Tree& t = *tree_;
-  if (t.root == detail::kNone) return;
-  detail::walk_leaves(
-      t, t.root, [](const detail::Aabb&) { return 2; },
-      [&](const detail::StoredPoint& s, bool) { visit(t.to_world(s.p)); });
+  detail::for_each_held(*tree_, visit);
 }
 
 std::vector<Eigen::Vector3d> EgoOctree::points() const {
@@ -45,18 +42,26 @@ std::vector<Eigen::Vector3d> EgoOctree::points() const {
   return out;
 }
 
-Stats EgoOctree::stats() const {
-  const detail::Tree& t = *tree_;
+Stats EgoOctree::stats() const { return detail::tree_stats(*tree_); }
+
+namespace detail {
+
+void for_each_held(const Tree& t, const std::function<void(const Eigen::Vector3d&)>& visit) {
+  if (t.root == kNone) return;
+  walk_leaves(
+      t, t.root, [](const Aabb&) { return 2; }, [&](const StoredPoint& s, bool) { visit(t.to_world(s.p)); });
+}
+
+Stats tree_stats(const Tree& t) {
   Stats s;
-  s.points = size();
+  s.points = t.root == kNone ? 0 : t.nodes[t.root].count;
   s.nodes = t.nodes.live();
-  s.bytes = sizeof(detail::Tree) + t.nodes.bytes() + t.points.bytes() +
-            t.start.slots.capacity() * sizeof(std::uint32_t) +
-            (t.moving.capacity() + t.scratch.capacity()) * sizeof(detail::StoredPoint);
-  if (t.root == detail::kNone) return s;
+  s.bytes = sizeof(Tree) + t.nodes.bytes() + t.points.bytes() + t.start.slots.capacity() * sizeof(std::uint32_t) +
+            (t.moving.capacity() + t.scratch.capacity()) * sizeof(StoredPoint);
+  if (t.root == kNone) return s;
   double depth_sum = 0.0;
   auto walk = [&](auto&& self, std::uint32_t id) -> void {
-    const detail::Node& n = t.nodes[id];
+    const Node& n = t.nodes[id];
     if (n.leaf) {
       if (n.count == 0) return;
       ++s.leaves;
@@ -66,7 +71,7 @@ Stats EgoOctree::stats() const {
     }
     for (int o = 0; o < 8; ++o) {
       const std::uint32_t ch = t.nodes.child(id, o);
-      if (ch != detail::kNone) self(self, ch);
+      if (ch != kNone) self(self, ch);
     }
   };
   walk(walk, t.root);
@@ -74,4 +79,5 @@ Stats EgoOctree::stats() const {
   return s;
 }
 
+}  // namespace detail
 }  // namespace eco

@@ -12,12 +12,7 @@ Tree::Tree(const Config& config) : cfg(config), points(config.max_age_frames > 0
 }
 
 Box Tree::box_around(const Eigen::Vector3d& position) const {
-  Box b;
-  for (int a = 0; a < 3; ++a) {
-    b.lo[a] = (position[a] - anchor[a]) - cfg.box_side / 2;
-    b.hi[a] = b.lo[a] + cfg.box_side;
-  }
-  return b;
+  return ego_box(position, anchor, cfg.box_side);
 }
 
 std::array<float, 3> Tree::to_stored(const Eigen::Vector3d& world) const {

@@ -30,6 +30,17 @@ struct Finger {
   Cell cell;
 };
 
+/// The ego box [p - L/2, p + L/2) around world position p, in the frame of precision origin
+/// `anchor`.
+inline Box ego_box(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor, double side) {
+  Box b;
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] = (position[a] - anchor[a]) - side / 2;
+    b.hi[a] = b.lo[a] + side;
+  }
+  return b;
+}
+
 struct Tree {
   explicit Tree(const Config& config);
 
@@ -40,6 +51,7 @@ struct Tree {
   Cell root_cell;
   Lattice lattice;
   int min_leaf_depth = 0;  // k in Quantised mode (the top k levels are always inner), else 0
+  bool bounded = true;     // holds only points in the ego box (false: a global baseline's tree)
 
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   Eigen::Vector3d previous_position = Eigen::Vector3d::Zero();

@@ -2,6 +2,7 @@
 // by the current k-th distance.
 
 #include "query/frames.hpp"
+#include "query/queries.hpp"
 
 #include <eco/ego_octree.hpp>
 
@@ -86,16 +87,22 @@ class KnnSearch {
 
 }  // namespace
 
-std::size_t EgoOctree::knn(const Eigen::Vector3d& query, std::span<Neighbor> out,
-                           Frame frame) const {
-  detail::require_finite(query, "knn", "query");
-  const detail::Tree& t = *tree_;
-  KnnSearch search(t, detail::to_anchor_frame(t, query, frame), out.size());
+namespace detail {
+
+std::size_t knn_query(const Tree& t, const Eigen::Vector3d& query, std::span<Neighbor> out, Frame frame) {
+  require_finite(query, "knn", "query");
+  KnnSearch search(t, to_anchor_frame(t, query, frame), out.size());
   const std::vector<Candidate>& found = search.run();
   for (std::size_t i = 0; i < found.size(); ++i) {
-    out[i] = {detail::from_stored(t, found[i].p, frame), found[i].sq_dist};
+    out[i] = {from_stored(t, found[i].p, frame), found[i].sq_dist};
   }
   return found.size();
+}
+
+}  // namespace detail
+
+std::size_t EgoOctree::knn(const Eigen::Vector3d& query, std::span<Neighbor> out, Frame frame) const {
+  return detail::knn_query(*tree_, query, out, frame);
 }
 
 std::vector<Neighbor> EgoOctree::knn(const Eigen::Vector3d& query, std::size_t k, Frame frame) const {

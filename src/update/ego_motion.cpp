@@ -38,12 +38,19 @@ void advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor) {
   tree.pose = world_T_sensor;
   ++tree.frame;
   const Eigen::Vector3d position = world_T_sensor.translation();
+  const Eigen::Vector3d anchor = precision_origin_for(position, tree.anchor, !tree.has_previous);
   if (!tree.has_previous) {
-    tree.anchor = nearest_origin(position);
-  } else if ((position - tree.anchor).cwiseAbs().maxCoeff() > kOriginReach) {
-    rebase(tree, nearest_origin(position));
+    tree.anchor = anchor;
+  } else if (anchor != tree.anchor) {
+    rebase(tree, anchor);
   }
   tree.box = tree.box_around(position);
+}
+
+Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor,
+                                     bool first) {
+  if (first || (position - anchor).cwiseAbs().maxCoeff() > kOriginReach) return nearest_origin(position);
+  return anchor;
 }
 
 }  // namespace eco::detail

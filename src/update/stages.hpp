@@ -26,6 +26,19 @@ void refine_overlap(Tree& tree);
 ///    insert them, starting at the start-table depth rather than the root.
 void insert_shift_in(Tree& tree, ScanView scan);
 
+/// The scan points the insert policy admits this frame (after advance_ego_motion).
+struct Admission;
+Admission admission(const Tree& tree);
+
+/// Throws std::invalid_argument naming the value unless `pose` is finite and rigid and `scan`
+/// is readable. `name` names the pose argument in the message.
+void check_update_arguments(const Eigen::Isometry3d& pose, const char* name, const ScanView& scan);
+
+/// The precision origin for a sensor at `position`: `anchor` while the sensor is near it, else
+/// the nearest multiple of 1024 m (always that on the first frame, `first`).
+Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor,
+                                     bool first);
+
 /// Whether the density cap admits one more point at stored position p.
 bool density_allows(const Tree& tree, const std::array<float, 3>& p);
 

@@ -43,9 +43,14 @@ void check_scan(const ScanView& scan) {
 
 }  // namespace
 
-const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  check_pose(world_T_sensor, "world_T_sensor");
+void detail::check_update_arguments(const Eigen::Isometry3d& pose, const char* name,
+                                    const ScanView& scan) {
+  check_pose(pose, name);
   check_scan(scan);
+}
+
+const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
+  detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan);
   detail::Tree& tree = *tree_;
   tree.last = UpdateStats{};
   tree.last.scan_points = scan.count;

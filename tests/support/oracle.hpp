@@ -20,7 +20,8 @@ namespace eco::test {
 
 class Oracle {
  public:
-  explicit Oracle(const Config& config) : cfg_(config) {}
+  /// `prunes`: drop what leaves the box (the contract); false for a global map that keeps all.
+  explicit Oracle(const Config& config, bool prunes = true) : cfg_(config), prunes_(prunes) {}
 
   /// Mirrors one update. `origin` is the precision origin the tree reports after the update.
   void update(const Eigen::Isometry3d& pose, const std::vector<Eigen::Vector3f>& scan,
@@ -38,7 +39,9 @@ class Oracle {
     position_ = pose.translation();
     const std::uint32_t age = cfg_.max_age_frames;
     const std::uint32_t cutoff = age > 0 && frame_ > age ? frame_ - age : 0;
-    std::erase_if(held_, [&](const Held& h) { return !in_box(position_, h.p) || h.stamp < cutoff; });
+    if (prunes_) {
+      std::erase_if(held_, [&](const Held& h) { return !in_box(position_, h.p) || h.stamp < cutoff; });
+    }
 
     const Eigen::Matrix3d r = pose.linear();
     const Eigen::Vector3d t = pose.translation();
@@ -166,6 +169,7 @@ class Oracle {
   }
 
   Config cfg_;
+  bool prunes_ = true;
   std::vector<Held> held_;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();

@@ -1,0 +1,57 @@
+// `eco` and `eco_exact`: the EgoOctree itself, through its public API.
+
+#include "baselines/makers.hpp"
+
+#include <eco/ego_octree.hpp>
+
+namespace eco::baselines {
+namespace {
+
+Config with_recentring(Config config, Recentring recentring) {
+  config.recentring = recentring;
+  return config;
+}
+
+class EcoMethod final : public Method {
+ public:
+  EcoMethod(const Config& config, Recentring recentring) : tree_(with_recentring(config, recentring)) {}
+
+  [[nodiscard]] std::string name() const override {
+    return tree_.config().recentring == Recentring::Quantised ? "eco" : "eco_exact";
+  }
+  void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
+    tree_.update(world_T_sensor, scan);
+  }
+  std::size_t knn(const Eigen::Vector3d& query, std::span<Neighbor> out) const override {
+    return tree_.knn(query, out);
+  }
+  using Method::knn;
+  [[nodiscard]] std::vector<Neighbor> radius(const Eigen::Vector3d& query, double r) const override {
+    return tree_.radius(query, r);
+  }
+  [[nodiscard]] std::vector<Eigen::Vector3d> box(const Eigen::Vector3d& lo,
+                                                 const Eigen::Vector3d& hi) const override {
+    return tree_.box(lo, hi);
+  }
+  [[nodiscard]] std::vector<VoxelKey> voxel_keys(double resolution) const override {
+    return tree_.voxel_keys(resolution);
+  }
+  [[nodiscard]] std::vector<Eigen::Vector3d> points() const override { return tree_.points(); }
+  [[nodiscard]] std::size_t size() const override { return tree_.size(); }
+  [[nodiscard]] Stats stats() const override { return tree_.stats(); }
+  [[nodiscard]] Eigen::Vector3d precision_origin() const override { return tree_.precision_origin(); }
+  [[nodiscard]] std::string check_invariants() const override { return tree_.check_invariants(); }
+  [[nodiscard]] const Config& config() const override { return tree_.config(); }
+  [[nodiscard]] const Eigen::Isometry3d& pose() const override { return tree_.pose(); }
+
+ private:
+  EgoOctree tree_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> make_eco(const Config& config, Recentring recentring) {
+  return std::make_unique<EcoMethod>(config, recentring);
+}
+
+}  // namespace eco::baselines

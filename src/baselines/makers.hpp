@@ -1,0 +1,14 @@
+#pragma once
+// One maker per method, each defined in the method's own file.
+
+#include <eco/baselines/method.hpp>
+
+namespace eco::baselines {
+
+std::unique_ptr<Method> make_eco(const Config& config, Recentring recentring);
+std::unique_ptr<Method> make_octree_base(const Config& config);
+std::unique_ptr<Method> make_ioctree_global(const Config& config);
+std::unique_ptr<Method> make_ioctree_target(const Config& config);
+std::unique_ptr<Method> make_nanoflann(const Config& config);
+
+}  // namespace eco::baselines

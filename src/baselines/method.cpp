@@ -1,0 +1,34 @@
+// The method registry: names to makers.
+
+#include "baselines/makers.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace eco::baselines {
+
+std::vector<Neighbor> Method::knn(const Eigen::Vector3d& query, std::size_t k) const {
+  std::vector<Neighbor> out(std::min(k, size()));
+  out.resize(knn(query, std::span<Neighbor>(out)));
+  return out;
+}
+
+const std::vector<std::string>& method_names() {
+  static const std::vector<std::string> names{"eco",           "eco_exact",      "octree_base",
+                                              "ioctree_global", "ioctree_target", "nanoflann"};
+  return names;
+}
+
+std::unique_ptr<Method> make_method(std::string_view name, const Config& config) {
+  if (name == "eco") return make_eco(config, Recentring::Quantised);
+  if (name == "eco_exact") return make_eco(config, Recentring::Exact);
+  if (name == "octree_base") return make_octree_base(config);
+  if (name == "ioctree_global") return make_ioctree_global(config);
+  if (name == "ioctree_target") return make_ioctree_target(config);
+  if (name == "nanoflann") return make_nanoflann(config);
+  std::string known;
+  for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("unknown method '" + std::string(name) + "' (known: " + known + ")");
+}
+
+}  // namespace eco::baselines

@@ -1,0 +1,55 @@
+#pragma once
+// The octree baselines keep their points in the same detail::Tree as ECO (node layout, leaf
+// chunks, insertion, splitting) and answer queries with the same code (src/query); only their
+// update strategy differs. This base class provides everything but update().
+
+#include "core/tree.hpp"
+#include "query/queries.hpp"
+
+#include <eco/baselines/method.hpp>
+
+#include <string>
+#include <utility>
+
+namespace eco::baselines {
+
+class TreeMethod : public Method {
+ public:
+  TreeMethod(std::string name, const Config& config) : name_(std::move(name)), tree_(config) {}
+
+  [[nodiscard]] std::string name() const override { return name_; }
+  std::size_t knn(const Eigen::Vector3d& query, std::span<Neighbor> out) const override {
+    return detail::knn_query(tree_, query, out, Frame::World);
+  }
+  using Method::knn;
+  [[nodiscard]] std::vector<Neighbor> radius(const Eigen::Vector3d& query, double r) const override {
+    return detail::radius_query(tree_, query, r, Frame::World);
+  }
+  [[nodiscard]] std::vector<Eigen::Vector3d> box(const Eigen::Vector3d& lo,
+                                                 const Eigen::Vector3d& hi) const override {
+    return detail::box_query(tree_, lo, hi, Frame::World);
+  }
+  [[nodiscard]] std::vector<VoxelKey> voxel_keys(double resolution) const override {
+    return detail::voxel_keys_of(tree_, resolution);
+  }
+  [[nodiscard]] std::vector<Eigen::Vector3d> points() const override {
+    std::vector<Eigen::Vector3d> out;
+    out.reserve(size());
+    detail::for_each_held(tree_, [&](const Eigen::Vector3d& p) { out.push_back(p); });
+    return out;
+  }
+  [[nodiscard]] std::size_t size() const override {
+    return tree_.root == detail::kNone ? 0 : tree_.nodes[tree_.root].count;
+  }
+  [[nodiscard]] Stats stats() const override { return detail::tree_stats(tree_); }
+  [[nodiscard]] Eigen::Vector3d precision_origin() const override { return tree_.anchor; }
+  [[nodiscard]] std::string check_invariants() const override { return detail::check_tree(tree_); }
+  [[nodiscard]] const Config& config() const override { return tree_.cfg; }
+  [[nodiscard]] const Eigen::Isometry3d& pose() const override { return tree_.pose; }
+
+ protected:
+  std::string name_;
+  detail::Tree tree_;
+};
+
+}  // namespace eco::baselines

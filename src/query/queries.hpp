@@ -1,0 +1,32 @@
+#pragma once
+// The queries over a tree, as free functions: EgoOctree forwards to them, and the benchmark's
+// tree-based baselines (src/baselines) answer with the very same code.
+
+#include "core/tree.hpp"
+
+#include <eco/types.hpp>
+
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace eco::detail {
+
+/// The nearest held points to `query`, nearest first; writes at most out.size(), returns how many.
+std::size_t knn_query(const Tree& t, const Eigen::Vector3d& query, std::span<Neighbor> out, Frame frame);
+/// Held points within `radius` of `query`, nearest first.
+std::vector<Neighbor> radius_query(const Tree& t, const Eigen::Vector3d& query, double radius, Frame frame);
+/// Held points in the closed box [lo, hi], in no particular order.
+std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                       Frame frame);
+/// Sorted, unique keys of the occupied voxels of side `resolution`.
+std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution);
+/// Calls visit(world point) once per held point.
+void for_each_held(const Tree& t, const std::function<void(const Eigen::Vector3d&)>& visit);
+/// Points, nodes, leaf depths and bytes: a walk over the nodes.
+Stats tree_stats(const Tree& t);
+/// Empty when every structural invariant holds, else the first violation.
+std::string check_tree(const Tree& t);
+
+}  // namespace eco::detail

@@ -1,0 +1,160 @@
+// A wrong baseline is a wrong table: every benchmark method passes the oracle tests ECO passes —
+// randomized streams, every motion pattern and insert policy, held set and every query equal to
+// the brute force after every frame. `ioctree_global` keeps what left the box, so its oracle
+// does not prune.
+
+#include "support/compare.hpp"
+#include "support/streams.hpp"
+
+#include <eco/baselines/method.hpp>
+
+#include <tuple>
+
+namespace eco::test {
+namespace {
+
+using baselines::make_method;
+using baselines::Method;
+
+using Params = std::tuple<std::string, InsertPolicy, Motion, Cloud, bool>;
+
+class BaselineOracle : public ::testing::TestWithParam<Params> {};
+
+TEST_P(BaselineOracle, HeldSetAndQueriesMatchBruteForceEveryFrame) {
+  const auto [name, policy, motion, cloud, small_leaves] = GetParam();
+  Config cfg;
+  cfg.insert_policy = policy;
+  if (small_leaves) {  // deep trees: one point per leaf down to the minimum cell
+    cfg.box_side = 7.5;
+    cfg.leaf_capacity = 1;
+    cfg.min_cell_size = 0.2;
+  } else {
+    cfg.leaf_capacity = 8;  // the paper's N_max
+  }
+  const std::unique_ptr<Method> method = make_method(name, cfg);
+  ASSERT_EQ(method->name(), name);
+  Oracle oracle(cfg, /*prunes=*/name != "ioctree_global");
+  Stream stream(motion, cloud, cfg.box_side, 4321u);
+  std::mt19937 rng(17);
+  for (int t = 0; t < 24; ++t) {
+    const Eigen::Isometry3d pose = stream.pose(t);
+    const std::vector<Eigen::Vector3f> scan = stream.scan(t);
+    method->update(pose, scan);
+    oracle.update(pose, scan, method->precision_origin());
+    expect_same_world_answers(*method, oracle, rng, name + " frame " + std::to_string(t));
+    if (HasFatalFailure()) return;
+  }
+}
+
+std::string param_name(const ::testing::TestParamInfo<Params>& info) {
+  const auto [name, policy, motion, cloud, small_leaves] = info.param;
+  return name + (policy == InsertPolicy::ShiftInOnly ? "_ShiftIn_" : "_AllInBox_") + test::name(motion) + "_" +
+         test::name(cloud) + (small_leaves ? "_OnePointLeaves" : "");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Methods, BaselineOracle,
+    ::testing::Combine(::testing::ValuesIn(baselines::method_names()),
+                       ::testing::Values(InsertPolicy::ShiftInOnly, InsertPolicy::AllInBox),
+                       ::testing::Values(Motion::Smooth, Motion::Still, Motion::Backwards, Motion::Diagonal,
+                                         Motion::Teleport),
+                       ::testing::Values(Cloud::Surfaces, Cloud::Duplicates), ::testing::Bool()),
+    param_name);
+
+using CappedParams = std::tuple<std::string, InsertPolicy, Motion>;
+
+class BaselineCapped : public ::testing::TestWithParam<CappedParams> {};
+
+TEST_P(BaselineCapped, DensityCapAndAgeLimitAsTheContractSays) {
+  const auto [name, policy, motion] = GetParam();
+  Config cfg;
+  cfg.insert_policy = policy;
+  cfg.density_cap = {0.5, 2};
+  cfg.max_age_frames = name == "ioctree_global" ? 0 : 4;  // a global map never deletes
+  const std::unique_ptr<Method> method = make_method(name, cfg);
+  Oracle oracle(cfg, name != "ioctree_global");
+  Stream stream(motion, Cloud::Duplicates, cfg.box_side, 99u);
+  std::mt19937 rng(3);
+  for (int t = 0; t < 16; ++t) {
+    const Eigen::Isometry3d pose = stream.pose(t);
+    const std::vector<Eigen::Vector3f> scan = stream.scan(t);
+    method->update(pose, scan);
+    oracle.update(pose, scan, method->precision_origin());
+    expect_same_world_answers(*method, oracle, rng, name + " frame " + std::to_string(t));
+    if (HasFatalFailure()) return;
+  }
+}
+
+std::string capped_name(const ::testing::TestParamInfo<CappedParams>& info) {
+  const auto [name, policy, motion] = info.param;
+  return name + (policy == InsertPolicy::ShiftInOnly ? "_ShiftIn_" : "_AllInBox_") + test::name(motion);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    OctreeMethods, BaselineCapped,
+    ::testing::Combine(::testing::Values("eco", "eco_exact", "octree_base", "ioctree_global", "ioctree_target"),
+                       ::testing::Values(InsertPolicy::ShiftInOnly, InsertPolicy::AllInBox),
+                       ::testing::Values(Motion::Smooth, Motion::Still, Motion::Teleport)),
+    capped_name);
+
+TEST(Baselines, UnknownNameAndUnsupportedConfigAreRejectedByName) {
+  try {
+    (void)make_method("kdtree", Config{});
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'kdtree'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("octree_base"), std::string::npos) << e.what();
+  }
+  Config capped;
+  capped.density_cap = {0.1, 3};
+  EXPECT_THROW((void)make_method("nanoflann", capped), std::invalid_argument);
+  Config bad;
+  bad.box_side = -1.0;
+  for (const std::string& name : baselines::method_names()) {
+    EXPECT_THROW((void)make_method(name, bad), std::invalid_argument) << name;
+  }
+}
+
+TEST(Baselines, RejectedUpdateLeavesTheMethodUnchanged) {
+  for (const std::string& name : baselines::method_names()) {
+    SCOPED_TRACE(name);
+    const std::unique_ptr<Method> method = make_method(name, Config{});
+    const std::vector<Eigen::Vector3f> scan{{1, 2, 0.5f}, {-3, 1, 0}};
+    method->update(Eigen::Isometry3d::Identity(), scan);
+    Eigen::Isometry3d bad = Eigen::Isometry3d::Identity();
+    bad.translation().x() = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_THROW(method->update(bad, scan), std::invalid_argument);
+    bad = Eigen::Isometry3d::Identity();
+    bad.linear()(0, 0) = 2.0;
+    EXPECT_THROW(method->update(bad, scan), std::invalid_argument);
+    EXPECT_EQ(method->size(), 2u);
+    EXPECT_EQ(method->check_invariants(), "");
+  }
+}
+
+TEST(Baselines, GlobalOctreeDeepensAsTheRobotDrivesAwayEcoDoesNot) {
+  Config cfg;
+  cfg.leaf_capacity = 8;
+  const std::unique_ptr<Method> eco = make_method("eco", cfg);
+  const std::unique_ptr<Method> target = make_method("ioctree_target", cfg);
+  Stream stream(Motion::Smooth, Cloud::Surfaces, cfg.box_side, 5u);
+  Stats eco_first, target_first;
+  for (int t = 0; t < 400; t += 1) {
+    Eigen::Isometry3d pose = stream.pose(t);
+    pose.translation().x() *= 3.0;  // 2.7 m a frame: over a kilometre in 400 frames
+    const std::vector<Eigen::Vector3f> scan = stream.scan(t);
+    eco->update(pose, scan);
+    target->update(pose, scan);
+    if (t == 0) {
+      eco_first = eco->stats();
+      target_first = target->stats();
+    }
+  }
+  ASSERT_EQ(sorted(eco->points()), sorted(target->points()));
+  EXPECT_NEAR(eco->stats().mean_leaf_depth, eco_first.mean_leaf_depth, 1.0);
+  EXPECT_GE(target->stats().mean_leaf_depth, target_first.mean_leaf_depth + 5.0)
+      << "the global root should have doubled at least five times";
+}
+
+}  // namespace
+}  // namespace eco::test
