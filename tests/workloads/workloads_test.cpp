@@ -35,6 +35,7 @@ class ListWorkload final : public Workload {
   explicit ListWorkload(std::vector<WorkloadFrame> frames) : frames_(std::move(frames)) {}
   std::size_t size() const override { return frames_.size(); }
   WorkloadFrame frame(std::size_t i) const override { return frames_.at(i); }
+  Eigen::Isometry3d pose(std::size_t i) const override { return frames_.at(i).world_T_sensor; }
   std::string name() const override { return "list"; }
 
  private:

@@ -14,6 +14,9 @@ class DynamicWorkload final : public Workload {
 
   [[nodiscard]] std::size_t size() const override { return sequence_.size(); }
   [[nodiscard]] WorkloadFrame frame(std::size_t index) const override;
+  [[nodiscard]] Eigen::Isometry3d pose(std::size_t index) const override {
+    return sequence_.poses()[index];
+  }
   [[nodiscard]] std::string name() const override { return "dynamic"; }
   [[nodiscard]] const io::KittiSequence& sequence() const { return sequence_; }
 

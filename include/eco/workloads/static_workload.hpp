@@ -20,6 +20,7 @@ class StaticWorkload final : public Workload {
 
   [[nodiscard]] std::size_t size() const override { return poses_.size(); }
   [[nodiscard]] WorkloadFrame frame(std::size_t index) const override;
+  [[nodiscard]] Eigen::Isometry3d pose(std::size_t index) const override { return poses_.at(index); }
   [[nodiscard]] std::string name() const override { return "static"; }
   [[nodiscard]] const StaticMap& map() const { return *map_; }
 

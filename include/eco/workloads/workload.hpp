@@ -23,6 +23,8 @@ class Workload {
   [[nodiscard]] virtual std::size_t size() const = 0;
   /// Frame `index` < size(); throws std::out_of_range past the end.
   [[nodiscard]] virtual WorkloadFrame frame(std::size_t index) const = 0;
+  /// The sensor pose of frame `index` alone, without making its points.
+  [[nodiscard]] virtual Eigen::Isometry3d pose(std::size_t index) const = 0;
   [[nodiscard]] virtual std::string name() const = 0;
 };
 

@@ -1,0 +1,46 @@
+#pragma once
+// Everything a benchmark run is told: where its frames come from, which methods it compares,
+// what it measures, and the tree configuration every method gets.
+
+#include <eco/config.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace eco::bench {
+
+enum class WorkloadKind { Static, Dynamic };
+
+struct BenchOptions {
+  std::optional<std::filesystem::path> data;  ///< KITTI-layout folder; none: the simulator's default drive
+  WorkloadKind workload = WorkloadKind::Static;
+  std::vector<std::string> methods{"eco", "eco_exact", "octree_base", "ioctree_global", "ioctree_target",
+                                   "nanoflann"};
+  std::size_t frames = 0;              ///< frames to run; 0 = the whole sequence
+  std::filesystem::path out = "results";
+  Config config = paper_config();      ///< given to every method
+  double map_resolution = 0.02;        ///< [m] static map voxel (paper: 0.9–1.5 M points per box)
+  double voxel_resolution = 0.1;       ///< [m] voxel map timed and compared (Chamfer)
+  std::size_t knn_queries = 1000;      ///< queries per frame, timed as one batch
+  std::size_t knn_k = 5;
+  std::uint64_t seed = 1;              ///< query draws; the simulator's seed when there is no data
+  std::size_t sim_frames = 200;        ///< length of the default simulated drive
+  bool check_every_frame = false;      ///< also run check_invariants() after every update (slow)
+
+  /// The paper's settings: L = 20 m, N_max = 8, ShiftInOnly.
+  static Config paper_config() {
+    Config c;
+    c.leaf_capacity = 8;
+    c.insert_policy = InsertPolicy::ShiftInOnly;
+    return c;
+  }
+};
+
+[[nodiscard]] inline std::string to_string(WorkloadKind kind) {
+  return kind == WorkloadKind::Static ? "static" : "dynamic";
+}
+
+}  // namespace eco::bench

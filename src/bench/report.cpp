@@ -1,0 +1,173 @@
+#include "bench/report.hpp"
+
+#include "bench/machine.hpp"
+#include "bench/svg_plot.hpp"
+
+#include <eco/io/error.hpp>
+#include <eco/version.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace eco::bench {
+namespace {
+
+using nlohmann::json;
+
+void write_file(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw io::Error(path.string(), "", "cannot write");
+}
+
+std::string fixed(double v, int digits) {
+  if (std::isnan(v)) return "–";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+/// JSON has no NaN: a figure that does not apply is null.
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+std::string now_utc() {
+  const std::time_t t = std::time(nullptr);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buffer;
+}
+
+json config_json(const Config& c) {
+  return {{"box_side", c.box_side},
+          {"leaf_capacity", c.leaf_capacity},
+          {"min_cell_size", c.min_cell_size},
+          {"recentring", c.recentring == Recentring::Quantised ? "quantised" : "exact"},
+          {"quantum_levels", c.quantum_levels},
+          {"insert_policy", c.insert_policy == InsertPolicy::ShiftInOnly ? "shift_in_only" : "all_in_box"},
+          {"density_cap", {{"cell_size", c.density_cap.cell_size}, {"max_points", c.density_cap.max_points}}},
+          {"max_age_frames", c.max_age_frames}};
+}
+
+json run_json(const BenchRun& run, const std::string& command_line) {
+  const BenchOptions& o = run.options;
+  return {{"version", kVersion},
+          {"date", now_utc()},
+          {"machine", describe_machine()},
+          {"command", command_line},
+          {"source", run.source},
+          {"workload", to_string(o.workload)},
+          {"frames", run.methods.empty() ? 0 : run.methods.front().frames.size()},
+          {"methods", o.methods},
+          {"map_resolution_m", o.map_resolution},
+          {"map_points", run.map_points},
+          {"voxel_resolution_m", o.voxel_resolution},
+          {"knn_queries", o.knn_queries},
+          {"knn_k", o.knn_k},
+          {"seed", o.seed},
+          {"seconds", run.seconds},
+          {"config", config_json(o.config)},
+          {"note", "eco_exact always runs with recentring = exact; octree_base and the i-Octree baselines "
+                   "place their roots themselves"}};
+}
+
+std::string csv(const MethodRun& m) {
+  std::ostringstream s;
+  s << "frame,input_points,update_ms,voxel_ms,knn_ms,points,nodes,mean_depth,max_depth,bytes,chamfer_m\n";
+  s << std::setprecision(6);
+  for (const FrameRecord& r : m.frames) {
+    s << r.frame << ',' << r.input_points << ',' << r.update_ms << ',' << r.voxel_ms << ',' << r.knn_ms << ','
+      << r.points << ',' << r.nodes << ',' << r.mean_depth << ',' << r.max_depth << ',' << r.bytes << ','
+      << (std::isnan(r.chamfer_m) ? std::string() : fixed(r.chamfer_m, 6)) << '\n';
+  }
+  return s.str();
+}
+
+json summary_json(const BenchRun& run, const std::vector<MethodSummary>& summaries) {
+  json methods = json::object();
+  for (const MethodSummary& s : summaries) {
+    methods[s.name] = {{"frames", s.frames},
+                       {"update_ms", s.update_ms},
+                       {"update_ms_p99", s.update_ms_p99},
+                       {"voxel_ms", s.voxel_ms},
+                       {"knn_ms", s.knn_ms},
+                       {"mean_depth", s.mean_depth},
+                       {"first_frame_depth", s.first_depth},
+                       {"last_frame_depth", s.last_depth},
+                       {"max_depth", s.max_depth},
+                       {"bytes", s.bytes},
+                       {"bytes_per_point", s.bytes_per_point},
+                       {"points", s.points},
+                       {"nodes", s.nodes},
+                       {"chamfer_m", number(s.chamfer_m)}};
+  }
+  return {{"workload", to_string(run.options.workload)}, {"source", run.source}, {"methods", methods}};
+}
+
+const MethodSummary* find(const std::vector<MethodSummary>& summaries, const std::string& name) {
+  for (const MethodSummary& s : summaries) {
+    if (s.name == name) return &s;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>& summaries) {
+  const MethodSummary* eco = find(summaries, "eco");
+  std::ostringstream s;
+  s << "Table II shape (ms per frame; KNN = one batch of " << run.options.knn_queries << " queries, k = "
+    << run.options.knn_k << "):\n\n| workload |";
+  for (const MethodSummary& m : summaries) s << ' ' << m.name << " update | voxel | KNN |";
+  s << "\n|---|";
+  for (std::size_t i = 0; i < summaries.size(); ++i) s << "--:|--:|--:|";
+  s << "\n| " << to_string(run.options.workload) << " |";
+  for (const MethodSummary& m : summaries) {
+    s << ' ' << fixed(m.update_ms, 2) << " | " << fixed(m.voxel_ms, 2) << " | " << fixed(m.knn_ms, 2) << " |";
+  }
+  s << "\n\n| method | update ms | p99 ms | voxel ms | KNN ms | held points | nodes | leaf depth first → last | "
+       "max depth | bytes/point | peak MB | Chamfer m | update / eco | KNN / eco |\n"
+    << "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+  for (const MethodSummary& m : summaries) {
+    const bool octree = m.nodes > 0;
+    s << "| " << m.name << " | " << fixed(m.update_ms, 3) << " | " << fixed(m.update_ms_p99, 3) << " | "
+      << fixed(m.voxel_ms, 3) << " | " << fixed(m.knn_ms, 3) << " | " << fixed(m.points, 0) << " | "
+      << (octree ? fixed(m.nodes, 0) : "–") << " | "
+      << (octree ? fixed(m.first_depth, 2) + " → " + fixed(m.last_depth, 2) : "–") << " | "
+      << (octree ? std::to_string(m.max_depth) : "–") << " | " << fixed(m.bytes_per_point, 1) << " | "
+      << fixed(double(m.bytes) / 1e6, 1) << " | " << fixed(m.chamfer_m, 4) << " | "
+      << (eco ? fixed(m.update_ms / eco->update_ms, 2) + "×" : "–") << " | "
+      << (eco ? fixed(m.knn_ms / eco->knn_ms, 2) + "×" : "–") << " |\n";
+  }
+  return s.str();
+}
+
+void write_results(const std::filesystem::path& folder, const BenchRun& run, const std::string& command_line) {
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error) throw io::Error(folder.string(), "", "cannot create the results folder: " + error.message());
+  const std::vector<MethodSummary> summaries = summarize(run);
+  write_file(folder / "config.json", run_json(run, command_line).dump(2) + "\n");
+  for (const MethodRun& m : run.methods) write_file(folder / (m.name + ".csv"), csv(m));
+  write_file(folder / "summary.json", summary_json(run, summaries).dump(2) + "\n");
+  std::ostringstream md;
+  md << "# ECO benchmark: " << to_string(run.options.workload) << " workload\n\n"
+     << "- source: " << run.source << "\n- frames: " << (summaries.empty() ? 0 : summaries.front().frames)
+     << (run.map_points ? ", static map of " + std::to_string(run.map_points) + " points" : std::string())
+     << "\n- L = " << run.options.config.box_side << " m, N_max = " << run.options.config.leaf_capacity
+     << ", insert policy " << (run.options.config.insert_policy == InsertPolicy::ShiftInOnly ? "ShiftInOnly" : "AllInBox")
+     << ", voxel map at " << run.options.voxel_resolution << " m\n- machine: " << describe_machine()
+     << "\n- version " << kVersion << ", command: `" << command_line << "`\n\n"
+     << summary_tables(run, summaries)
+     << "\nChamfer: each method's voxel map (clipped to the ego box) against octree_base's, mean of the two "
+        "directed mean nearest-voxel distances. Depth and nodes: – for the k-d tree.\n";
+  write_file(folder / "summary.md", md.str());
+  write_update_plot(folder / "update_ms.svg", run);
+}
+
+}  // namespace eco::bench

@@ -1,0 +1,26 @@
+#pragma once
+// The results folder of a benchmark run:
+//   config.json    the resolved options and tree configuration, version, machine, command
+//   <method>.csv   one row per frame
+//   summary.md     a table shaped like the paper's Table II, then depth, memory and ratios to ECO
+//   summary.json   per method: update_ms, voxel_ms, knn_ms (means), update_ms_p99, mean_depth,
+//                  max_depth, bytes, points, chamfer_m, and more
+//   update_ms.svg  update time per frame per method (the paper's Fig. 3)
+
+#include "bench/runner.hpp"
+#include "bench/summary.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace eco::bench {
+
+/// Creates `folder` (and parents) and writes every file above. Throws eco::io::Error naming the
+/// file that could not be written.
+void write_results(const std::filesystem::path& folder, const BenchRun& run, const std::string& command_line);
+
+/// The Markdown tables of summary.md (without its heading), for the terminal as well.
+std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>& summaries);
+
+}  // namespace eco::bench

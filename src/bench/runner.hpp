@@ -1,0 +1,52 @@
+#pragma once
+// Runs the methods over the same stream, frame by frame (every method gets frame t before any
+// gets frame t+1, so machine drift hits all alike), and records what the paper measures.
+
+#include "bench/bench_options.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace eco::bench {
+
+struct FrameRecord {
+  std::size_t frame = 0;
+  std::size_t input_points = 0;  ///< points in the frame given to update
+  double update_ms = 0.0;
+  double voxel_ms = 0.0;         ///< voxel map of the held points at voxel_resolution
+  double knn_ms = 0.0;           ///< the frame's whole batch of queries
+  std::size_t points = 0;        ///< held after the update
+  std::size_t nodes = 0;
+  double mean_depth = 0.0;       ///< mean leaf depth (0: no octree)
+  int max_depth = 0;
+  std::size_t bytes = 0;
+  double chamfer_m = 0.0;        ///< voxel map vs octree_base's, clipped to the box; NaN without it
+};
+
+struct MethodRun {
+  std::string name;
+  std::vector<FrameRecord> frames;
+};
+
+struct BenchRun {
+  BenchOptions options;
+  std::string source;           ///< where the frames came from
+  std::size_t map_points = 0;   ///< static workload: points in the aggregated map
+  std::vector<MethodRun> methods;
+  double seconds = 0.0;         ///< wall time of the run, loading included
+};
+
+struct Progress {
+  std::function<void(const std::string&)> status = [](const std::string&) {};
+  /// After each frame: frames done, frames in all, the run so far.
+  std::function<void(std::size_t, std::size_t, const BenchRun&)> frame = [](std::size_t, std::size_t,
+                                                                             const BenchRun&) {};
+};
+
+/// Throws std::invalid_argument for an unknown method or a bad configuration, eco::io::Error for
+/// an unreadable data folder, std::runtime_error if a method breaks its invariants (with
+/// check_every_frame).
+BenchRun run_bench(const BenchOptions& options, const Progress& progress = {});
+
+}  // namespace eco::bench

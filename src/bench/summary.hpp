@@ -1,0 +1,33 @@
+#pragma once
+// One line per method out of its per-frame records: the figures summary.md and summary.json
+// report.
+
+#include "bench/runner.hpp"
+
+#include <string>
+#include <vector>
+
+namespace eco::bench {
+
+struct MethodSummary {
+  std::string name;
+  std::size_t frames = 0;
+  double update_ms = 0.0;       ///< mean over frames
+  double update_ms_p99 = 0.0;   ///< 99th percentile (nearest rank)
+  double voxel_ms = 0.0;        ///< mean
+  double knn_ms = 0.0;          ///< mean, per batch of queries
+  double points = 0.0;          ///< mean held
+  double nodes = 0.0;           ///< mean
+  double mean_depth = 0.0;      ///< mean over frames of the mean leaf depth
+  int max_depth = 0;            ///< deepest leaf seen
+  double first_depth = 0.0;     ///< mean leaf depth after the first frame
+  double last_depth = 0.0;      ///< ... and after the last
+  std::size_t bytes = 0;        ///< peak over the run
+  double bytes_per_point = 0.0; ///< mean over frames holding points
+  double chamfer_m = 0.0;       ///< mean; NaN without octree_base in the run
+};
+
+[[nodiscard]] MethodSummary summarize(const MethodRun& run);
+[[nodiscard]] std::vector<MethodSummary> summarize(const BenchRun& run);
+
+}  // namespace eco::bench
