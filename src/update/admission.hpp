@@ -21,13 +21,28 @@ struct Admission {
   std::optional<Box> previous;  // set under ShiftInOnly once a previous box exists
 
   /// Calls take(stored point) for each admitted scan point; counts the refused ones in `stats`.
+  ///
+  /// Most points of a frame are decided by a float test in the ego frame (rotation only), which
+  /// is exact for points farther than kMargin from every face of both boxes; the rest take the
+  /// exact path: world coordinates in double, rounded once to the stored float, box tests on
+  /// those.
   template <class Take>
   void for_each(ScanView scan, UpdateStats& stats, Take&& take) const {
     const Eigen::Matrix3d rotation = pose.linear();
+    const Eigen::Matrix3f rotation_f = rotation.cast<float>();
+    const Eigen::Vector3d centre = pose.translation() - anchor;  // the sensor, anchor frame
+    const QuickBox outside = QuickBox::around(box, centre, -kMargin);  // beyond it: refused
+    const QuickBox inside = QuickBox::around(box, centre, kMargin);    // within it: in the box
+    const QuickBox seen = previous ? QuickBox::around(*previous, centre, kMargin) : QuickBox{};
     for (std::size_t i = 0; i < scan.count; ++i) {
       const Eigen::Vector3f sensor = scan[i];
       if (!sensor.allFinite()) {
         ++stats.skipped_nonfinite;
+        continue;
+      }
+      const Eigen::Vector3f ego = rotation_f * sensor;
+      if (!outside.holds(ego) || (previous && inside.holds(ego) && seen.holds(ego))) {
+        ++stats.skipped_by_policy;
         continue;
       }
       // world - anchor, rounded once to float: exactly what to_stored() gives
@@ -41,6 +56,28 @@ struct Admission {
       take(p);
     }
   }
+
+ private:
+  /// [m] far beyond the float error of the quick test (points within 120 m: ~1e-5 m) and of
+  /// the stored coordinates (within 4 km of the precision origin: ~2.5e-4 m).
+  static constexpr double kMargin = 0.01;
+
+  /// A box in the ego frame (world axes, origin at the sensor), shrunk by `margin` per face
+  /// (grown when negative); an empty QuickBox holds nothing.
+  struct QuickBox {
+    std::array<float, 3> lo{1, 1, 1}, hi{0, 0, 0};
+    static QuickBox around(const Box& b, const Eigen::Vector3d& centre, double margin) {
+      QuickBox q;
+      for (int a = 0; a < 3; ++a) {
+        q.lo[a] = float(b.lo[a] - centre[a] + margin);
+        q.hi[a] = float(b.hi[a] - centre[a] - margin);
+      }
+      return q;
+    }
+    [[nodiscard]] bool holds(const Eigen::Vector3f& e) const {
+      return e[0] >= lo[0] && e[0] < hi[0] && e[1] >= lo[1] && e[1] < hi[1] && e[2] >= lo[2] && e[2] < hi[2];
+    }
+  };
 };
 
 }  // namespace eco::detail
