@@ -18,9 +18,14 @@ build: deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD) -j $(JOBS)
 
-## demo: stream a generated moving scene through ECO and print per-frame figures.
+## demo: the benchmark on the simulator's default drive (written once to DEMO_DATA), both
+## workloads, every method; prints the two tables, results under results/demo-*.
+DEMO_DATA   ?= $(BUILD)/sim-default
+DEMO_FRAMES ?= 120
 demo: build
-	$(BUILD)/examples/eco_demo
+	@test -f $(DEMO_DATA)/poses.txt || $(BUILD)/bin/eco simulate --out $(DEMO_DATA) --frames $(DEMO_FRAMES) --seed 1
+	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --workload static --frames 60 --out results/demo-static
+	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --workload dynamic --out results/demo-dynamic
 
 ## test: every test, in a release build and again under AddressSanitizer + UBSan, then each
 ## parser's libFuzzer target for a fixed time (FUZZ_SECONDS) under the same sanitizers.
