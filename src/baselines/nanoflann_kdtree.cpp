@@ -11,6 +11,8 @@
 #include <nanoflann.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace eco::baselines {
@@ -97,9 +99,11 @@ class NanoflannKdTree final : public Method {
     if (!index_) return out;
     std::vector<std::pair<std::uint32_t, double>> found;
     const std::array<double, 3> q = local(query);
-    index_->radiusSearch(q.data(), r * r, found, nanoflann::SearchParams(32, 0.0f, true));
+    // nanoflann keeps d2 < bound (strict); the contract is d2 <= r^2, so ask one ulp wider.
+    const double bound = std::nextafter(r * r, std::numeric_limits<double>::infinity());
+    index_->radiusSearch(q.data(), bound, found, nanoflann::SearchParams(32, 0.0f, true));
     for (const auto& [i, d2] : found) {
-      if (d2 <= r * r) out.push_back({world(held_.p[i]), d2});  // nanoflann's bound is strict
+      if (d2 <= r * r) out.push_back({world(held_.p[i]), d2});
     }
     return out;
   }

@@ -126,6 +126,18 @@ TEST(Baselines, RejectedUpdateLeavesTheMethodUnchanged) {
   }
 }
 
+TEST(Baselines, RadiusIncludesPointsExactlyOnTheSphere) {
+  for (const std::string& name : baselines::method_names()) {
+    SCOPED_TRACE(name);
+    const std::unique_ptr<Method> method = make_method(name, Config{});
+    const std::vector<Eigen::Vector3f> scan{{1, 0, 0}, {0, -2, 0}, {0, 0, 0.5f}};
+    method->update(Eigen::Isometry3d::Identity(), scan);
+    EXPECT_EQ(method->radius(Eigen::Vector3d::Zero(), 1.0).size(), 2u);  // |p| = 1 is inside
+    EXPECT_EQ(method->radius(Eigen::Vector3d::Zero(), 2.0).size(), 3u);
+    EXPECT_EQ(method->radius(Eigen::Vector3d::Zero(), 0.5).size(), 1u);
+  }
+}
+
 TEST(Baselines, GlobalOctreeDeepensAsTheRobotDrivesAwayEcoDoesNot) {
   Config cfg;
   cfg.leaf_capacity = 8;
