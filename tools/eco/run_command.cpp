@@ -37,9 +37,10 @@ struct RunOptions {
   }
 };
 
-io::PointCloud cloud_of(const std::vector<Eigen::Vector3d>& points) {
+/// `points` minus `origin`, as float32 (PLY): near the origin, millimetres survive the cast.
+io::PointCloud cloud_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin) {
   io::PointCloud cloud;
-  for (const Eigen::Vector3d& p : points) cloud.points.push_back(p.cast<float>());  // PLY: float32
+  for (const Eigen::Vector3d& p : points) cloud.points.push_back((p - origin).cast<float>());
   return cloud;
 }
 
@@ -48,15 +49,11 @@ void export_frame(const RunOptions& o, const EgoOctree& tree, std::size_t t) {
   std::snprintf(stem, sizeof stem, "%06zu", t);
   const std::filesystem::path folder(o.out);
   std::filesystem::create_directories(folder);
-  // Ego frame: float32 PLY keeps millimetres near the sensor however far the drive went.
-  io::write_ply(folder / (std::string(stem) + "_points.ply"),
-                cloud_of([&] {
-                  std::vector<Eigen::Vector3d> ego = tree.points();
-                  for (Eigen::Vector3d& p : ego) p -= tree.pose().translation();
-                  return ego;
-                }()),
+  // Ego frame, so float32 PLY keeps millimetres however far the drive went.
+  const Eigen::Vector3d sensor = tree.pose().translation();
+  io::write_ply(folder / (std::string(stem) + "_points.ply"), cloud_of(tree.points(), sensor),
                 io::PlyFormat::BinaryLittleEndian);
-  io::write_ply(folder / (std::string(stem) + "_voxels.ply"), cloud_of(tree.voxelize(o.voxel, Frame::Ego)),
+  io::write_ply(folder / (std::string(stem) + "_voxels.ply"), cloud_of(tree.voxelize(o.voxel), sensor),
                 io::PlyFormat::BinaryLittleEndian);
 }
 
