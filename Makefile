@@ -5,9 +5,13 @@ ASAN_BUILD ?= build-asan
 FUZZ_BUILD ?= build-fuzz
 JOBS       ?= $(shell nproc)
 DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev libeigen3-dev libgtest-dev liblzf-dev \
-                   libnanoflann-dev libcli11-dev nlohmann-json3-dev
+                   libnanoflann-dev libcli11-dev nlohmann-json3-dev \
+                   pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest \
+                   python3-matplotlib python3-pip python3-venv python3-setuptools python3-wheel
+## Debian's own interpreter, whatever else is first on PATH (pyenv, conda).
+PYTHON     ?= /usr/bin/python3
 
-.PHONY: all deps build demo test test-release test-sanitize test-fuzz install clean
+.PHONY: all deps build demo test test-release test-sanitize test-fuzz install python clean
 
 all: build
 
@@ -15,7 +19,7 @@ deps:
 	@scripts/install-deps.sh $(DEBIAN_PACKAGES)
 
 build: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DECO_BUILD_PYTHON=ON -DPython_EXECUTABLE=$(PYTHON)
 	cmake --build $(BUILD) -j $(JOBS)
 
 ## demo: the benchmark on the simulator's default drive (written once to DEMO_DATA), both
@@ -27,8 +31,9 @@ demo: build
 	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --workload static --frames 60 --out results/demo-static
 	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --workload dynamic --out results/demo-dynamic
 
-## test: every test, in a release build and again under AddressSanitizer + UBSan, then each
-## parser's libFuzzer target for a fixed time (FUZZ_SECONDS) under the same sanitizers.
+## test: every test (C++ and, through pytest, Python), in a release build; the C++ tests again
+## under AddressSanitizer + UBSan; then each parser's libFuzzer target for a fixed time
+## (FUZZ_SECONDS) under the same sanitizers.
 FUZZ_SECONDS ?= 10
 test: test-release test-sanitize test-fuzz
 
@@ -46,7 +51,15 @@ test-fuzz: deps
 	cmake --build $(FUZZ_BUILD) -j $(JOBS)
 	ctest --test-dir $(FUZZ_BUILD) --output-on-failure -j $(JOBS)
 
-## install: into PREFIX (default /usr/local).
+## python: the Python package eco, built by pip through setuptools and our CMake, offline, for
+## PYTHON. Debian's interpreter refuses pip outside a virtual environment (PEP 668) unless told;
+## the package goes to /usr/local, which Debian leaves to the administrator.
+PIP_FLAGS = --no-build-isolation --no-index --disable-pip-version-check \
+  $(shell $(PYTHON) -c 'import os, sys, sysconfig; print("--break-system-packages" if sys.prefix == sys.base_prefix and os.path.exists(os.path.join(sysconfig.get_path("stdlib"), "EXTERNALLY-MANAGED")) else "")')
+python: deps
+	$(PYTHON) -m pip install $(PIP_FLAGS) ./python
+
+## install: the C++ library into PREFIX (default /usr/local).
 PREFIX ?= /usr/local
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)

@@ -1,0 +1,164 @@
+#include "arrays.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace eco::python {
+
+using namespace pybind11::literals;
+
+namespace {
+
+std::string type_name(py::handle object) {
+  return py::str(py::type::handle_of(object).attr("__name__"));
+}
+
+std::string shape_of(const py::array& a) {
+  std::ostringstream s;
+  s << "(";
+  for (py::ssize_t d = 0; d < a.ndim(); ++d) s << (d ? ", " : "") << a.shape(d);
+  s << (a.ndim() == 1 ? ",)" : ")");
+  return s.str();
+}
+
+std::string describe(const Eigen::Vector3d& v) {
+  std::ostringstream s;
+  s << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
+  return s.str();
+}
+
+/// Lists and tuples become float64 arrays; anything else that is not an ndarray is refused.
+py::array as_array(py::handle object, const char* name) {
+  if (py::isinstance<py::array>(object)) return py::reinterpret_borrow<py::array>(object);
+  if (!py::isinstance<py::list>(object) && !py::isinstance<py::tuple>(object)) {
+    throw py::type_error(std::string(name) + " must be a numpy array (or a list of numbers), got " +
+                         type_name(object));
+  }
+  try {
+    return py::module_::import("numpy").attr("asarray")(object, "dtype"_a = "float64");
+  } catch (const py::error_already_set& e) {
+    throw py::type_error(std::string(name) + " is not a list of numbers: " + e.what());
+  }
+}
+
+/// A small argument (a vector, a pose) of any real dtype and layout, as float64.
+py::array_t<double> small_array(py::handle object, const char* name) {
+  const py::array a = as_array(object, name);
+  const char kind = a.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u') {
+    throw py::type_error(std::string(name) + " must hold real numbers, got dtype " +
+                         std::string(py::str(py::handle(a.dtype()))));
+  }
+  return py::array_t<double, py::array::c_style | py::array::forcecast>(a);
+}
+
+}  // namespace
+
+Rows3::Rows3(py::handle object, const char* name, bool allow_single)
+    : array_(as_array(object, name)), name_(name) {
+  if (allow_single && array_.ndim() == 1 && array_.shape(0) == 3) {
+    array_ = small_array(array_, name);  // one point: any real dtype and layout will do
+  }
+  const py::dtype dtype = array_.dtype();
+  float32_ = dtype.equal(py::dtype::of<float>());
+  if (!float32_ && !dtype.equal(py::dtype::of<double>())) {
+    throw py::type_error(std::string(name) + " must have dtype float32 or float64, got " +
+                         std::string(py::str(py::handle(dtype))));
+  }
+  single_ = allow_single && array_.ndim() == 1 && array_.shape(0) == 3;
+  if (!single_ && !(array_.ndim() == 2 && array_.shape(1) == 3)) {
+    throw py::value_error(std::string(name) + " must have shape (N, 3)" +
+                          (allow_single ? " or (3,)" : "") + ", got " + shape_of(array_));
+  }
+  if (!(array_.flags() & py::array::c_style)) {
+    throw py::value_error(std::string(name) +
+                          " must be C-contiguous; pass numpy.ascontiguousarray(" + name + ")");
+  }
+  count_ = single_ ? 1 : std::size_t(array_.shape(0));
+}
+
+Eigen::Vector3d Rows3::row(std::size_t i) const {
+  if (float32_) {
+    const float* p = static_cast<const float*>(array_.data()) + 3 * i;
+    return {p[0], p[1], p[2]};
+  }
+  const double* p = static_cast<const double*>(array_.data()) + 3 * i;
+  return {p[0], p[1], p[2]};
+}
+
+void Rows3::require_finite() const {
+  for (std::size_t i = 0; i < count_; ++i) {
+    const Eigen::Vector3d v = row(i);
+    if (!v.allFinite()) {
+      throw py::value_error(std::string(name_) + (single_ ? "" : " row " + std::to_string(i)) +
+                            " is not finite: " + describe(v));
+    }
+  }
+}
+
+ScanView Rows3::scan(std::vector<float>& storage) const {
+  if (float32_) return {static_cast<const float*>(array_.data()), count_, 3};
+  const double* p = static_cast<const double*>(array_.data());
+  storage.assign(p, p + 3 * count_);
+  return {storage.data(), count_, 3};
+}
+
+Eigen::Vector3d vector3_arg(py::handle object, const char* name) {
+  const py::array_t<double> a = small_array(object, name);
+  if (a.ndim() != 1 || a.shape(0) != 3) {
+    throw py::value_error(std::string(name) + " must have 3 coordinates, got shape " + shape_of(a));
+  }
+  const auto v = a.unchecked<1>();
+  const Eigen::Vector3d out(v(0), v(1), v(2));
+  if (!out.allFinite()) {
+    throw py::value_error(std::string(name) + " is not finite: " + describe(out));
+  }
+  return out;
+}
+
+Eigen::Isometry3d pose_arg(py::handle object, const char* name) {
+  const py::array_t<double> a = small_array(object, name);
+  if (a.ndim() != 2 || a.shape(1) != 4 || (a.shape(0) != 4 && a.shape(0) != 3)) {
+    throw py::value_error(std::string(name) + " must be a 4x4 (or 3x4) transform, got shape " +
+                          shape_of(a));
+  }
+  const auto m = a.unchecked<2>();
+  if (a.shape(0) == 4 && !(m(3, 0) == 0.0 && m(3, 1) == 0.0 && m(3, 2) == 0.0 && m(3, 3) == 1.0)) {
+    std::ostringstream s;
+    s << name << " must have last row [0, 0, 0, 1], got [" << m(3, 0) << ", " << m(3, 1) << ", "
+      << m(3, 2) << ", " << m(3, 3) << "]";
+    throw py::value_error(s.str());
+  }
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) pose.matrix()(r, c) = m(r, c);
+  }
+  return pose;
+}
+
+double number_arg(py::handle object, const char* name) {
+  if (py::isinstance<py::bool_>(object) || !PyNumber_Check(object.ptr()) ||
+      py::isinstance<py::str>(object)) {
+    throw py::type_error(std::string(name) + " must be a number, got " + type_name(object));
+  }
+  return py::cast<double>(py::float_(py::reinterpret_borrow<py::object>(object)));
+}
+
+py::array_t<double> matrix_array(const Eigen::Isometry3d& pose) {
+  py::array_t<double> out({4, 4});
+  auto m = out.mutable_unchecked<2>();
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) m(r, c) = pose.matrix()(r, c);
+  }
+  return out;
+}
+
+py::array_t<double> vector_array(const Eigen::Vector3d& v) {
+  py::array_t<double> out(3);
+  auto a = out.mutable_unchecked<1>();
+  for (int i = 0; i < 3; ++i) a(i) = v[i];
+  return out;
+}
+
+}  // namespace eco::python

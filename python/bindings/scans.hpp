@@ -1,0 +1,47 @@
+#pragma once
+// One scan of a sequence (read from disk or simulated) as Python sees it.
+
+#include "arrays.hpp"
+
+#include <eco/io/point_cloud.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace eco::python {
+
+/// eco.io.Scan: a frame's index, time, pose, points and, when known, intensity and labels.
+struct Scan {
+  std::size_t index = 0;
+  py::object time;        // float seconds, or None
+  py::object pose;        // (4, 4) float64 world_T_lidar
+  py::object points;      // (N, 3) float32, lidar frame
+  py::object intensity;   // (N,) float32, or None
+  py::object labels;      // (N,) uint32 SemanticKITTI labels, or None
+};
+
+/// Everything a reader or the simulator produced for one frame. Built without the GIL, turned
+/// into a Scan (which needs it) by to_python().
+struct ScanData {
+  std::size_t index = 0;
+  std::optional<double> time;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  io::PointCloud cloud;
+  std::optional<std::vector<std::uint32_t>> labels;
+
+  [[nodiscard]] Scan to_python() &&;
+  /// (pose, points): what iterating a sequence yields.
+  [[nodiscard]] py::tuple pose_and_points() &&;
+};
+
+/// (points (N, 3) float32, intensity (N,) float32 or None).
+[[nodiscard]] py::tuple cloud_arrays(io::PointCloud&& cloud);
+
+void bind_scan(py::module_& io);
+
+/// Python's index rules for a sequence of `size` items: negatives count from the end;
+/// IndexError (naming the index and the size) past either end.
+[[nodiscard]] std::size_t sequence_index(std::ptrdiff_t index, std::size_t size);
+
+}  // namespace eco::python

@@ -1,0 +1,284 @@
+// eco.EgoOctree: the C++ EgoOctree behind a reader-writer lock, fed and read with numpy arrays.
+// The GIL is released while C++ works; the lock keeps update() exclusive of queries, as the C++
+// contract asks, when Python threads share a tree.
+
+#include "bindings.hpp"
+#include "config_record.hpp"
+
+#include <eco/ego_octree.hpp>
+
+#include <limits>
+#include <mutex>
+#include <shared_mutex>
+#include <stdexcept>
+
+namespace eco::python {
+namespace {
+
+struct SharedTree {
+  explicit SharedTree(const Config& config) : tree(config) {}
+  EgoOctree tree;
+  mutable std::shared_mutex mutex;
+};
+
+/// Runs `work(tree)` without the GIL, holding the lock shared (queries) or exclusive (updates).
+template <class Work>
+auto reading(const SharedTree& t, Work&& work) {
+  py::gil_scoped_release no_gil;
+  std::shared_lock lock(t.mutex);
+  return work(static_cast<const EgoOctree&>(t.tree));
+}
+template <class Work>
+auto writing(SharedTree& t, Work&& work) {
+  py::gil_scoped_release no_gil;
+  std::unique_lock lock(t.mutex);
+  return work(t.tree);
+}
+
+Config config_arg(const py::object& config, const py::kwargs& fields) {
+  if (config.is_none()) return record_from_dict<Config>(fields, "");
+  if (!fields.empty()) {
+    throw py::type_error("EgoOctree() takes either config or keyword fields, not both");
+  }
+  return from_python<Config>(config, "config");
+}
+
+/// The C++ update names its pose argument world_T_sensor; say which Python argument it was.
+template <class Work>
+UpdateStats update_with(SharedTree& self, const char* pose_name, const Eigen::Isometry3d& pose,
+                        py::handle points, Work&& work) {
+  const Rows3 rows(points, "points", /*allow_single=*/false);
+  std::vector<float> converted;
+  try {
+    return writing(self, [&](EgoOctree& tree) { return work(tree, pose, rows.scan(converted)); });
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string(pose_name) + " rejected (tree unchanged): " + e.what());
+  }
+}
+
+std::size_t k_arg(py::handle k) {
+  const auto value = integer_arg<std::size_t>(k, "k");
+  if (value == 0) throw py::value_error("k must be >= 1");
+  return value;
+}
+
+py::tuple neighbors_arrays(const std::vector<Neighbor>& found) {
+  py::array_t<double> points({found.size(), std::size_t(3)});
+  py::array_t<double> sq_dists(found.size());
+  auto p = points.mutable_unchecked<2>();
+  auto d = sq_dists.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    for (int c = 0; c < 3; ++c) p(py::ssize_t(i), c) = found[i].point[c];
+    d(py::ssize_t(i)) = found[i].sq_dist;
+  }
+  return py::make_tuple(points, sq_dists);
+}
+
+py::tuple knn(const SharedTree& self, py::handle queries, py::handle k_value, py::handle frame_value) {
+  const Rows3 q(queries, "queries", /*allow_single=*/true);
+  q.require_finite();
+  const std::size_t k = k_arg(k_value);
+  const Frame frame = enum_arg<Frame>(frame_value, "frame");
+  const std::size_t m = q.size();
+  using Shape = std::vector<std::size_t>;
+  py::array_t<double> points(q.single() ? Shape{k, 3} : Shape{m, k, 3});
+  py::array_t<double> sq_dists(q.single() ? Shape{k} : Shape{m, k});
+  double* p = points.mutable_data();
+  double* d = sq_dists.mutable_data();
+  reading(self, [&](const EgoOctree& tree) {
+    std::vector<Neighbor> found(k);
+    for (std::size_t i = 0; i < m; ++i) {
+      const std::size_t n = tree.knn(q.row(i), found, frame);
+      for (std::size_t j = 0; j < k; ++j, p += 3, ++d) {
+        const bool real = j < n;  // fewer than k held: NaN points at infinite distance
+        for (int c = 0; c < 3; ++c) p[c] = real ? found[j].point[c] : std::numeric_limits<double>::quiet_NaN();
+        *d = real ? found[j].sq_dist : std::numeric_limits<double>::infinity();
+      }
+    }
+    return 0;
+  });
+  return py::make_tuple(points, sq_dists);
+}
+
+py::object radius(const SharedTree& self, py::handle queries, py::handle radius_value,
+                  py::handle frame_value) {
+  const Rows3 q(queries, "queries", /*allow_single=*/true);
+  q.require_finite();
+  const double r = number_arg(radius_value, "radius");
+  const Frame frame = enum_arg<Frame>(frame_value, "frame");
+  const auto found = reading(self, [&](const EgoOctree& tree) {
+    std::vector<std::vector<Neighbor>> out(q.size());
+    for (std::size_t i = 0; i < q.size(); ++i) out[i] = tree.radius(q.row(i), r, frame);
+    return out;
+  });
+  if (q.single()) return neighbors_arrays(found.front());
+  py::list out;
+  for (const auto& one : found) out.append(neighbors_arrays(one));
+  return out;
+}
+
+py::array_t<std::int64_t> keys_array(const std::vector<VoxelKey>& keys) {
+  py::array_t<std::int64_t> out({keys.size(), std::size_t(3)});
+  auto a = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    a(py::ssize_t(i), 0) = keys[i].x;
+    a(py::ssize_t(i), 1) = keys[i].y;
+    a(py::ssize_t(i), 2) = keys[i].z;
+  }
+  return out;
+}
+
+constexpr const char* kTreeDoc = R"(The Ego-Centric Octree: the points inside a cube of side L that travels with the sensor.
+
+EgoOctree(config=None, **fields) takes a Config, or Config's fields as keyword arguments
+(e.g. EgoOctree(box_side=30.0, insert_policy="AllInBox")); a bad value raises ValueError or
+TypeError naming the field.
+
+After update() the held points are exactly the previous ones plus the inserted ones, restricted
+to the half-open box [p - L/2, p + L/2) (less density-cap refusals and aged points); queries are
+exact over them. A rejected call raises and leaves the tree unchanged. The GIL is released
+while C++ works; queries may run from several threads at once, updates run alone.
+
+Array arguments: points and queries are (N, 3) numpy arrays of float32 or float64, C-contiguous
+(a non-contiguous array is refused, not silently copied); small arguments (poses, box corners)
+take any real array or list. Results are float64 numpy arrays in the query's frame.)";
+
+}  // namespace
+
+void bind_tree(py::module_& m) {
+  py::class_<SharedTree>(m, "EgoOctree", kTreeDoc)
+      .def(py::init([](const py::object& config, const py::kwargs& fields) {
+             return std::make_unique<SharedTree>(config_arg(config, fields));
+           }),
+           py::arg("config") = py::none(),
+           "Creates an empty tree from a Config (or a dict of its fields) or keyword fields.")
+      .def(
+          "update",
+          [](SharedTree& self, py::handle pose, py::handle points) {
+            return update_with(self, "pose", pose_arg(pose, "pose"), points,
+                               [](EgoOctree& t, const Eigen::Isometry3d& p, ScanView s) {
+                                 return t.update(p, s);
+                               });
+          },
+          py::arg("pose"), py::arg("points"),
+          R"(Advances to the sensor pose and takes in a scan.
+
+pose: 4x4 (or 3x4) world_T_sensor, mapping sensor-frame points to the world.
+points: (N, 3) float32 or float64 array, sensor frame. float64 is rounded to float32 (ECO stores
+    float offsets). NaN/inf rows are skipped and counted, not raised on.
+Returns the UpdateStats of this frame. A non-finite pose or a rotation that is not orthonormal
+raises ValueError and leaves the tree unchanged.)")
+      .def(
+          "update_relative",
+          [](SharedTree& self, py::handle motion, py::handle points) {
+            return update_with(self, "motion", pose_arg(motion, "motion"), points,
+                               [](EgoOctree& t, const Eigen::Isometry3d& p, ScanView s) {
+                                 return t.update_relative(p, s);
+                               });
+          },
+          py::arg("motion"), py::arg("points"),
+          R"(update() with the relative motion previous_T_current (4x4 or 3x4): the new sensor
+pose expressed in the previous sensor frame. The first frame starts from the identity pose.)")
+      .def("knn", &knn, py::arg("queries"), py::arg("k"), py::arg("frame") = Frame::World,
+           R"(The k nearest held points to each query, nearest first, exact.
+
+queries: (M, 3) float32/float64 array, or one (3,) point.
+Returns (points, sq_dists): (M, k, 3) and (M, k) float64 arrays ((k, 3) and (k,) for one
+point). When fewer than k points are held, the missing entries are NaN points at distance inf.
+frame: Frame.World (default) or Frame.Ego (world axes, origin at the sensor), or its name.)")
+      .def("radius", &radius, py::arg("queries"), py::arg("radius"), py::arg("frame") = Frame::World,
+           R"(Held points within `radius` metres (closed ball) of each query, nearest first.
+
+For one (3,) query returns (points (n, 3), sq_dists (n,)); for (M, 3) queries, a list of M
+such pairs.)")
+      .def(
+          "box",
+          [](const SharedTree& self, py::handle lo_value, py::handle hi_value, py::handle frame_value) {
+            const Eigen::Vector3d lo = vector3_arg(lo_value, "lo");
+            const Eigen::Vector3d hi = vector3_arg(hi_value, "hi");
+            const Frame frame = enum_arg<Frame>(frame_value, "frame");
+            return rows_array(reading(self, [&](const EgoOctree& t) { return t.box(lo, hi, frame); }));
+          },
+          py::arg("lo"), py::arg("hi"), py::arg("frame") = Frame::World,
+          "Held points inside the closed box [lo, hi] (3-vectors), as an (n, 3) array in no "
+          "particular order.")
+      .def(
+          "voxelize",
+          [](const SharedTree& self, py::handle resolution, py::handle frame_value) {
+            const double res = number_arg(resolution, "resolution");
+            const Frame frame = enum_arg<Frame>(frame_value, "frame");
+            return rows_array(reading(self, [&](const EgoOctree& t) { return t.voxelize(res, frame); }));
+          },
+          py::arg("resolution"), py::arg("frame") = Frame::World,
+          "Centres of the occupied voxels of the world-aligned grid of side `resolution` [m], "
+          "as a (V, 3) array in key order.")
+      .def(
+          "voxel_keys",
+          [](const SharedTree& self, py::handle resolution) {
+            const double res = number_arg(resolution, "resolution");
+            return keys_array(reading(self, [&](const EgoOctree& t) { return t.voxel_keys(res); }));
+          },
+          py::arg("resolution"),
+          "Integer keys (V, 3) int64 of the occupied voxels, sorted and unique: voxel i spans "
+          "[i*resolution, (i+1)*resolution) per axis.")
+      .def(
+          "points",
+          [](const SharedTree& self) {
+            return rows_array(reading(self, [](const EgoOctree& t) { return t.points(); }));
+          },
+          "Every held point, world frame, as an (N, 3) float64 array in no particular order.")
+      .def(
+          "stats", [](const SharedTree& self) { return reading(self, [](const EgoOctree& t) { return t.stats(); }); },
+          "What the tree holds now (a Stats; O(nodes)).")
+      .def(
+          "check_invariants",
+          [](const SharedTree& self) {
+            return reading(self, [](const EgoOctree& t) { return t.check_invariants(); });
+          },
+          "Checks every structural invariant; returns '' when all hold, else the first violation.")
+      .def("__len__", [](const SharedTree& self) { return reading(self, [](const EgoOctree& t) { return t.size(); }); },
+           "Points held.")
+      .def_property_readonly(
+          "size", [](const SharedTree& self) { return reading(self, [](const EgoOctree& t) { return t.size(); }); },
+          "Points held, O(1).")
+      .def_property_readonly(
+          "last_update",
+          [](const SharedTree& self) { return reading(self, [](const EgoOctree& t) { return t.last_update(); }); },
+          "The UpdateStats of the last update.")
+      .def_property_readonly(
+          "config", [](const SharedTree& self) { return self.tree.config(); },
+          "The tree's Config (a copy: a tree's configuration is fixed).")
+      .def_property_readonly(
+          "pose",
+          [](const SharedTree& self) {
+            return matrix_array(reading(self, [](const EgoOctree& t) { return t.pose(); }));
+          },
+          "The current sensor pose world_T_sensor as a 4x4 array (identity before the first update).")
+      .def_property_readonly(
+          "ego_box",
+          [](const SharedTree& self) -> py::object {
+            const auto box = reading(self, [](const EgoOctree& t) { return t.ego_box(); });
+            if (box.isEmpty()) return py::none();
+            return py::make_tuple(vector_array(box.min()), vector_array(box.max()));
+          },
+          "The current ego box (lo, hi), world frame, half-open; None before the first update.")
+      .def_property_readonly(
+          "precision_origin",
+          [](const SharedTree& self) {
+            return vector_array(reading(self, [](const EgoOctree& t) { return t.precision_origin(); }));
+          },
+          "The world point that stored float coordinates are offsets from (a multiple of 1024 m).")
+      .def_property_readonly(
+          "frame_count",
+          [](const SharedTree& self) { return reading(self, [](const EgoOctree& t) { return t.frame_count(); }); },
+          "Updates taken so far.")
+      .def("__repr__", [](const SharedTree& self) {
+        const auto [points, frames] = reading(self, [](const EgoOctree& t) {
+          return std::pair(t.size(), t.frame_count());
+        });
+        return "EgoOctree(points=" + std::to_string(points) + ", frames=" + std::to_string(frames) +
+               ", box_side=" + std::string(py::repr(py::float_(self.tree.config().box_side))) + ")";
+      });
+}
+
+}  // namespace eco::python

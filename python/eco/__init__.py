@@ -1,0 +1,24 @@
+"""ECO — the Ego-Centric Octree, from Python.
+
+An octree of the LiDAR points inside a cube of side L that travels with the sensor: each update
+drops what the robot left behind and takes in what the new scan shows; queries (k nearest
+neighbours, radius, box, voxel map) are exact over the held points.
+
+    import numpy as np, eco
+
+    tree = eco.EgoOctree(box_side=20.0, insert_policy="AllInBox")
+    for pose, points in eco.sim.Simulator(frames=20):   # (4, 4) float64, (N, 3) float32
+        tree.update(pose, points)
+        nearest, sq_dists = tree.knn(np.zeros((1, 3)) + pose[:3, 3], k=5)
+
+Modules: eco (EgoOctree, Config and its enums, Stats, UpdateStats), eco.io (KittiSequence, PLY,
+PCD, KITTI files), eco.sim (Simulator, SimConfig). Every class and function has a docstring.
+"""
+
+from . import _eco
+from ._reexport import reexport
+
+__all__ = reexport(_eco, globals(), __name__) + ["io", "sim"]
+__version__ = _eco.__version__
+
+from . import io, sim  # noqa: E402  (after the core names, which they use)

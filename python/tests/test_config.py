@@ -1,0 +1,138 @@
+"""Config mirrors eco::Config field for field: keyword construction, attributes, to_dict, pickle,
+and the tree keeps what it was given. The records the library returns, and the docstrings."""
+
+import inspect
+import json
+import pickle
+
+import pytest
+
+import eco
+
+# One non-default value per field (the C++ struct's fields, in order).
+CHANGED = {
+    "box_side": 31.5,
+    "leaf_capacity": 12,
+    "min_cell_size": 0.125,
+    "recentring": eco.Recentring.Exact,
+    "quantum_levels": 4,
+    "insert_policy": eco.InsertPolicy.AllInBox,
+    "density_cap": eco.DensityCap(cell_size=0.2, max_points=3),
+    "max_age_frames": 40,
+}
+
+
+def test_defaults_are_the_cpp_defaults():
+    assert eco.Config().to_dict() == {
+        "box_side": 20.0,
+        "leaf_capacity": 32,
+        "min_cell_size": 0.05,
+        "recentring": "Quantised",
+        "quantum_levels": 3,
+        "insert_policy": "ShiftInOnly",
+        "density_cap": {"cell_size": 0.0, "max_points": 0},
+        "max_age_frames": 0,
+    }
+
+
+def test_fields_are_the_cpp_fields_in_order():
+    assert list(eco.Config().to_dict()) == list(CHANGED)
+
+
+@pytest.mark.parametrize("name", list(CHANGED))
+def test_each_field_round_trips(name):
+    value = CHANGED[name]
+    by_keyword = eco.Config(**{name: value})
+    assert getattr(by_keyword, name) == value
+    by_attribute = eco.Config()
+    setattr(by_attribute, name, value)
+    assert by_attribute == by_keyword
+    assert eco.Config(**by_keyword.to_dict()) == by_keyword
+    assert eco.Config(**json.loads(json.dumps(by_keyword.to_dict()))) == by_keyword
+    assert pickle.loads(pickle.dumps(by_keyword)) == by_keyword
+    assert eco.EgoOctree(by_keyword).config == by_keyword
+    assert eco.EgoOctree(**{name: value}).config == by_keyword
+    if name != "recentring":  # unchanged fields keep their defaults
+        assert by_keyword.recentring == eco.Recentring.Quantised
+
+
+def test_all_fields_together():
+    config = eco.Config(**CHANGED)
+    assert config.to_dict()["density_cap"] == {"cell_size": 0.2, "max_points": 3}
+    assert eco.EgoOctree(config=config).config == config
+    assert "leaf_capacity=12" in repr(config) and "Recentring.Exact" in repr(config)
+
+
+def test_enums_by_name_in_any_case_and_nested_records_as_dicts():
+    config = eco.Config(recentring="exact", insert_policy="ALLINBOX",
+                        density_cap={"cell_size": 0.1, "max_points": 2})
+    assert config.recentring == eco.Recentring.Exact
+    assert config.insert_policy == eco.InsertPolicy.AllInBox
+    assert config.density_cap == eco.DensityCap(cell_size=0.1, max_points=2)
+    config.density_cap = None  # None: the defaults, i.e. off
+    assert config.density_cap.max_points == 0
+
+
+def test_nested_fields_assign_in_place():
+    config = eco.Config()
+    config.density_cap.cell_size = 0.3
+    config.density_cap.max_points = 5
+    assert config.to_dict()["density_cap"] == {"cell_size": 0.3, "max_points": 5}
+
+
+def test_tree_config_is_a_copy():
+    tree = eco.EgoOctree(box_side=10.0)
+    copy = tree.config
+    copy.box_side = 99.0
+    assert tree.config.box_side == 10.0
+
+
+def test_derived_values():
+    config = eco.Config(box_side=21.0, quantum_levels=3)
+    assert config.quantum == pytest.approx(3.0, rel=1e-8)
+    assert config.root_side == pytest.approx(24.0, rel=1e-8)
+    assert eco.Config(recentring="Exact").quantum == 0.0
+    assert config.max_depth > 0
+
+
+def test_simulator_config_round_trips():
+    config = eco.sim.SimConfig(seed=5, frames=3, lidar={"beams": 16}, city={"moving_cars": 2})
+    assert config.lidar.beams == 16 and config.city.moving_cars == 2
+    assert eco.sim.SimConfig(**config.to_dict()) == config
+    assert pickle.loads(pickle.dumps(config)) == config
+    assert eco.sim.Simulator(config).config == config
+    assert eco.sim.Simulator(seed=5, frames=3, lidar={"beams": 16}, city={"moving_cars": 2}).config == config
+
+
+def test_results_are_records():
+    tree = eco.EgoOctree(insert_policy="AllInBox")
+    update = tree.update([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]],
+                         [[1.0, 2.0, 3.0], [float("nan"), 0.0, 0.0], [50.0, 0.0, 0.0]])
+    assert update.to_dict() == tree.last_update.to_dict()
+    assert (update.scan_points, update.inserted, update.skipped_nonfinite, update.skipped_by_policy) == (3, 1, 1, 1)
+    stats = tree.stats()
+    assert stats.points == 1 and stats.leaves == 1 and stats.bytes > 0
+    assert set(stats.to_dict()) == {"points", "nodes", "leaves", "mean_leaf_depth", "max_leaf_depth", "bytes"}
+    with pytest.raises(AttributeError):
+        stats.points = 3
+
+
+def public_members(module):
+    for name in module.__all__:
+        value = getattr(module, name)
+        if inspect.ismodule(value):
+            continue
+        yield f"{module.__name__}.{name}", value
+        if inspect.isclass(value):
+            is_enum = hasattr(value, "__members__")  # pybind11's own name/value need no doc
+            for attr, member in vars(value).items():
+                if attr.startswith("_") or isinstance(member, value) or (is_enum and attr in ("name", "value")):
+                    continue
+                yield f"{module.__name__}.{name}.{attr}", member
+
+
+@pytest.mark.parametrize("module", [eco, eco.io, eco.sim], ids=lambda m: m.__name__)
+def test_everything_public_has_a_docstring(module):
+    for name, value in public_members(module):
+        assert (inspect.getdoc(value) or "").strip(), f"{name} has no docstring"
+    assert module.__doc__.strip()
