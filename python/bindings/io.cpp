@@ -44,6 +44,16 @@ io::PointCloud cloud_arg(py::handle points, py::handle intensity) {
   return cloud;
 }
 
+/// A writer binding: checks the arrays with the GIL, writes without it.
+template <class Write>
+auto cloud_writer(Write write) {
+  return [write](const fs::path& path, py::handle points, py::handle intensity) {
+    const io::PointCloud cloud = cloud_arg(points, intensity);
+    py::gil_scoped_release no_gil;
+    write(path, cloud);
+  };
+}
+
 template <class Read>
 py::tuple read_cloud(const fs::path& path, Read read) {
   io::PointCloud cloud;
@@ -88,7 +98,10 @@ void bind_io(py::module_& io) {
       .value("Camera", io::PoseFrame::Camera, "camera-0 frame: lidar pose = Tr^-1 * P * Tr")
       .value("Lidar", io::PoseFrame::Lidar, "already world_T_lidar");
 
-  py::class_<io::KittiSequence>(io, "KittiSequence", kSequenceDoc)
+  py::class_<io::KittiSequence> sequence(io, "KittiSequence", kSequenceDoc);
+  def_frames(sequence, "Scans in the folder.", "read",
+             "Scan `index` with its time, reflectance and labels (an eco.io.Scan).", &read_frame);
+  sequence
       .def(py::init([](const fs::path& folder, py::handle pose_frame, std::string poses_file) {
              io::KittiOptions options;
              options.pose_frame = enum_arg<io::PoseFrame>(pose_frame, "pose_frame");
@@ -98,33 +111,6 @@ void bind_io(py::module_& io) {
            }),
            py::arg("folder"), py::arg("pose_frame") = io::PoseFrame::Auto,
            py::arg("poses_file") = "poses.txt")
-      .def("__len__", &io::KittiSequence::size, "Scans in the folder.")
-      .def(
-          "__getitem__",
-          [](const io::KittiSequence& seq, std::ptrdiff_t index) {
-            const std::size_t i = sequence_index(index, seq.size());
-            ScanData data;
-            {
-              py::gil_scoped_release no_gil;
-              io::KittiFrame frame = seq.read(i);
-              data.pose = frame.world_T_lidar;
-              data.cloud = std::move(frame.cloud);
-            }
-            return std::move(data).pose_and_points();
-          },
-          py::arg("index"), "(pose (4, 4) float64, points (N, 3) float32) of scan `index`.")
-      .def(
-          "read",
-          [](const io::KittiSequence& seq, std::ptrdiff_t index) {
-            const std::size_t i = sequence_index(index, seq.size());
-            ScanData data;
-            {
-              py::gil_scoped_release no_gil;
-              data = read_frame(seq, i);
-            }
-            return std::move(data).to_python();
-          },
-          py::arg("index"), "Scan `index` with its time, intensity and labels (an eco.io.Scan).")
       .def_property_readonly(
           "poses",
           [](const io::KittiSequence& seq) {
@@ -170,24 +156,16 @@ void bind_io(py::module_& io) {
       "read_pcd", [](const fs::path& path) { return read_cloud(path, io::read_pcd); },
       py::arg("path"),
       "A PCD file (ascii, binary or binary_compressed): (points (N, 3) float32, intensity or None).");
-  io.def(
-      "write_ply",
-      [](const fs::path& path, py::handle points, py::handle intensity) {
-        const io::PointCloud cloud = cloud_arg(points, intensity);
-        py::gil_scoped_release no_gil;
-        io::write_ply(path, cloud);
-      },
-      py::arg("path"), py::arg("points"), py::arg("intensity") = py::none(),
-      "Writes points (N, 3) [and intensity (N,)] as binary little-endian PLY, float32.");
-  io.def(
-      "write_pcd",
-      [](const fs::path& path, py::handle points, py::handle intensity) {
-        const io::PointCloud cloud = cloud_arg(points, intensity);
-        py::gil_scoped_release no_gil;
-        io::write_pcd(path, cloud);
-      },
-      py::arg("path"), py::arg("points"), py::arg("intensity") = py::none(),
-      "Writes points (N, 3) [and intensity (N,)] as binary PCD, float32.");
+  io.def("write_ply", cloud_writer([](const fs::path& path, const io::PointCloud& cloud) {
+            io::write_ply(path, cloud);
+          }),
+         py::arg("path"), py::arg("points"), py::arg("intensity") = py::none(),
+         "Writes points (N, 3) [and intensity (N,)] as binary little-endian PLY, float32.");
+  io.def("write_pcd", cloud_writer([](const fs::path& path, const io::PointCloud& cloud) {
+            io::write_pcd(path, cloud);
+          }),
+         py::arg("path"), py::arg("points"), py::arg("intensity") = py::none(),
+         "Writes points (N, 3) [and intensity (N,)] as binary PCD, float32.");
 }
 
 }  // namespace eco::python

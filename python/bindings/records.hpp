@@ -211,6 +211,17 @@ S record_from_dict(const py::dict& values, const std::string& prefix) {
   return s;
 }
 
+/// What a constructor like EgoOctree(config=None, **fields) was given: a record (or a dict of
+/// its fields), or its fields as keyword arguments, never both.
+template <class S>
+S config_or_fields(const py::object& config, const py::kwargs& fields, const char* owner) {
+  if (config.is_none()) return record_from_dict<S>(fields, "");
+  if (!fields.empty()) {
+    throw py::type_error(std::string(owner) + "() takes either config or keyword fields, not both");
+  }
+  return from_python<S>(config, "config");
+}
+
 template <class S>
 py::dict record_to_dict(const S& s) {
   py::dict out;

@@ -92,41 +92,14 @@ void bind_sim(py::module_& s) {
   bind_record<CityModel>(s, "The simulated city.", Access::ReadWrite);
   bind_record<SimConfig>(s, "Configuration of a Simulator (eco::sim::SimConfig).", Access::ReadWrite);
 
-  py::class_<sim::Simulator>(s, "Simulator", kSimulatorDoc)
+  py::class_<sim::Simulator> simulator(s, "Simulator", kSimulatorDoc);
+  def_frames(simulator, "Frames in the drive (config.frames).", "frame",
+             "Frame `index` with its time, reflectance and labels (an eco.io.Scan).", &simulated);
+  simulator
       .def(py::init([](const py::object& config, const py::kwargs& fields) {
-             if (!config.is_none() && !fields.empty()) {
-               throw py::type_error("Simulator() takes either config or keyword fields, not both");
-             }
-             const SimConfig c = config.is_none() ? record_from_dict<SimConfig>(fields, "")
-                                                  : from_python<SimConfig>(config, "config");
-             return sim::Simulator(c);
+             return sim::Simulator(config_or_fields<SimConfig>(config, fields, "Simulator"));
            }),
            py::arg("config") = py::none())
-      .def("__len__", &sim::Simulator::size, "Frames in the drive (config.frames).")
-      .def(
-          "__getitem__",
-          [](const sim::Simulator& simulator, std::ptrdiff_t index) {
-            const std::size_t i = sequence_index(index, simulator.size());
-            ScanData data;
-            {
-              py::gil_scoped_release no_gil;
-              data = simulated(simulator, i);
-            }
-            return std::move(data).pose_and_points();
-          },
-          py::arg("index"), "(pose (4, 4) float64, points (N, 3) float32) of frame `index`.")
-      .def(
-          "frame",
-          [](const sim::Simulator& simulator, std::ptrdiff_t index) {
-            const std::size_t i = sequence_index(index, simulator.size());
-            ScanData data;
-            {
-              py::gil_scoped_release no_gil;
-              data = simulated(simulator, i);
-            }
-            return std::move(data).to_python();
-          },
-          py::arg("index"), "Frame `index` with its time, reflectance and labels (an eco.io.Scan).")
       .def(
           "pose",
           [](const sim::Simulator& simulator, std::ptrdiff_t index) {

@@ -35,12 +35,12 @@ auto writing(SharedTree& t, Work&& work) {
   return work(t.tree);
 }
 
-Config config_arg(const py::object& config, const py::kwargs& fields) {
-  if (config.is_none()) return record_from_dict<Config>(fields, "");
-  if (!fields.empty()) {
-    throw py::type_error("EgoOctree() takes either config or keyword fields, not both");
-  }
-  return from_python<Config>(config, "config");
+/// A binding that returns `(tree.*getter)()` read under the shared lock, without the GIL.
+template <auto getter>
+auto read() {
+  return [](const SharedTree& self) {
+    return reading(self, [](const EgoOctree& t) { return (t.*getter)(); });
+  };
 }
 
 /// The C++ update names its pose argument world_T_sensor; say which Python argument it was.
@@ -148,7 +148,7 @@ take any real array or list. Results are float64 numpy arrays in the query's fra
 void bind_tree(py::module_& m) {
   py::class_<SharedTree>(m, "EgoOctree", kTreeDoc)
       .def(py::init([](const py::object& config, const py::kwargs& fields) {
-             return std::make_unique<SharedTree>(config_arg(config, fields));
+             return std::make_unique<SharedTree>(config_or_fields<Config>(config, fields, "EgoOctree"));
            }),
            py::arg("config") = py::none(),
            "Creates an empty tree from a Config (or a dict of its fields) or keyword fields.")
@@ -224,26 +224,19 @@ such pairs.)")
       .def(
           "points",
           [](const SharedTree& self) {
-            return rows_array(reading(self, [](const EgoOctree& t) { return t.points(); }));
+            return rows_array(read<&EgoOctree::points>()(self));
           },
           "Every held point, world frame, as an (N, 3) float64 array in no particular order.")
-      .def(
-          "stats", [](const SharedTree& self) { return reading(self, [](const EgoOctree& t) { return t.stats(); }); },
-          "What the tree holds now (a Stats; O(nodes)).")
+      .def("stats", read<&EgoOctree::stats>(), "What the tree holds now (a Stats; O(nodes)).")
       .def(
           "check_invariants",
-          [](const SharedTree& self) {
-            return reading(self, [](const EgoOctree& t) { return t.check_invariants(); });
-          },
+          read<&EgoOctree::check_invariants>(),
           "Checks every structural invariant; returns '' when all hold, else the first violation.")
-      .def("__len__", [](const SharedTree& self) { return reading(self, [](const EgoOctree& t) { return t.size(); }); },
-           "Points held.")
-      .def_property_readonly(
-          "size", [](const SharedTree& self) { return reading(self, [](const EgoOctree& t) { return t.size(); }); },
-          "Points held, O(1).")
+      .def("__len__", read<&EgoOctree::size>(), "Points held.")
+      .def_property_readonly("size", read<&EgoOctree::size>(), "Points held, O(1).")
       .def_property_readonly(
           "last_update",
-          [](const SharedTree& self) { return reading(self, [](const EgoOctree& t) { return t.last_update(); }); },
+          read<&EgoOctree::last_update>(),
           "The UpdateStats of the last update.")
       .def_property_readonly(
           "config", [](const SharedTree& self) { return self.tree.config(); },
@@ -251,7 +244,7 @@ such pairs.)")
       .def_property_readonly(
           "pose",
           [](const SharedTree& self) {
-            return matrix_array(reading(self, [](const EgoOctree& t) { return t.pose(); }));
+            return matrix_array(read<&EgoOctree::pose>()(self));
           },
           "The current sensor pose world_T_sensor as a 4x4 array (identity before the first update).")
       .def_property_readonly(
@@ -265,12 +258,12 @@ such pairs.)")
       .def_property_readonly(
           "precision_origin",
           [](const SharedTree& self) {
-            return vector_array(reading(self, [](const EgoOctree& t) { return t.precision_origin(); }));
+            return vector_array(read<&EgoOctree::precision_origin>()(self));
           },
           "The world point that stored float coordinates are offsets from (a multiple of 1024 m).")
       .def_property_readonly(
           "frame_count",
-          [](const SharedTree& self) { return reading(self, [](const EgoOctree& t) { return t.frame_count(); }); },
+          read<&EgoOctree::frame_count>(),
           "Updates taken so far.")
       .def("__repr__", [](const SharedTree& self) {
         const auto [points, frames] = reading(self, [](const EgoOctree& t) {
