@@ -1,9 +1,9 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """ECO in five minutes: stream a simulated city drive through an Ego-Centric Octree, ask for
 nearest neighbours, and plot what each update cost.
 
-    make python                               # once: builds and installs the package `eco`
-    python3 examples/python/quickstart.py     # writes eco_quickstart.png
+    make python                                      # once: builds and installs the package `eco`
+    /usr/bin/python3 examples/python/quickstart.py   # writes eco_quickstart.png
 """
 
 import argparse
