@@ -64,12 +64,24 @@ T integer_arg(py::handle value, const std::string& name) {
                          std::string(py::str(py::type::handle_of(value).attr("__name__"))));
   }
   const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
-  const long long v = py::cast<long long>(i);  // raises for values beyond 64 bits
-  if (v < (long long)std::numeric_limits<T>::min() ||
-      (unsigned long long)v > (unsigned long long)std::numeric_limits<T>::max() ||
-      (std::is_unsigned_v<T> && v < 0)) {
-    throw py::value_error(name + " = " + std::to_string(v) + " is out of range" +
-                          (std::is_unsigned_v<T> ? " (must be >= 0)" : ""));
+  const auto out_of_range = [&] {
+    return py::value_error(name + " = " + std::string(py::str(py::handle(i))) + " is out of range" +
+                           (std::is_unsigned_v<T> ? " (must be >= 0)" : ""));
+  };
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+  if (overflow > 0 && std::is_unsigned_v<T> && sizeof(T) == 8) {  // e.g. a 64-bit seed past 2^63
+    const unsigned long long u = PyLong_AsUnsignedLongLong(i.ptr());
+    if (PyErr_Occurred()) {
+      PyErr_Clear();
+      throw out_of_range();
+    }
+    return T(u);
+  }
+  if (overflow != 0 || v < (long long)std::numeric_limits<T>::min() ||
+      (std::is_unsigned_v<T> && v < 0) ||
+      (v > 0 && (unsigned long long)v > (unsigned long long)std::numeric_limits<T>::max())) {
+    throw out_of_range();
   }
   return T(v);
 }

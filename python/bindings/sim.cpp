@@ -92,10 +92,10 @@ void bind_sim(py::module_& s) {
   bind_record<CityModel>(s, "The simulated city.", Access::ReadWrite);
   bind_record<SimConfig>(s, "Configuration of a Simulator (eco::sim::SimConfig).", Access::ReadWrite);
 
-  py::class_<sim::Simulator> simulator(s, "Simulator", kSimulatorDoc);
-  def_frames(simulator, "Frames in the drive (config.frames).", "frame",
+  py::class_<sim::Simulator> simulator_class(s, "Simulator", kSimulatorDoc);
+  def_frames(simulator_class, "Frames in the drive (config.frames).", "frame",
              "Frame `index` with its time, reflectance and labels (an eco.io.Scan).", &simulated);
-  simulator
+  simulator_class
       .def(py::init([](const py::object& config, const py::kwargs& fields) {
              return sim::Simulator(config_or_fields<SimConfig>(config, fields, "Simulator"));
            }),

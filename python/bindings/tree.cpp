@@ -7,6 +7,7 @@
 
 #include <eco/ego_octree.hpp>
 
+#include <algorithm>
 #include <limits>
 #include <mutex>
 #include <shared_mutex>
@@ -86,7 +87,7 @@ py::tuple knn(const SharedTree& self, py::handle queries, py::handle k_value, py
   double* p = points.mutable_data();
   double* d = sq_dists.mutable_data();
   reading(self, [&](const EgoOctree& tree) {
-    std::vector<Neighbor> found(k);
+    std::vector<Neighbor> found(std::min(k, tree.size()));
     for (std::size_t i = 0; i < m; ++i) {
       const std::size_t n = tree.knn(q.row(i), found, frame);
       for (std::size_t j = 0; j < k; ++j, p += 3, ++d) {

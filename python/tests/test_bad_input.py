@@ -163,6 +163,7 @@ def test_bad_radius_box_resolution_and_frame(tree):
     ({"leaf_capacity": 0}, ValueError, ["leaf_capacity", "at least 1"]),
     ({"leaf_capacity": -3}, ValueError, ["leaf_capacity = -3", ">= 0"]),
     ({"leaf_capacity": 2 ** 40}, ValueError, ["leaf_capacity", "out of range"]),
+    ({"leaf_capacity": 2 ** 70}, ValueError, ["leaf_capacity", "out of range"]),
     ({"leaf_capacity": 8.5}, TypeError, ["leaf_capacity must be an integer", "float"]),
     ({"leaf_capacity": True}, TypeError, ["leaf_capacity must be an integer", "bool"]),
     ({"quantum_levels": 9}, ValueError, ["quantum_levels", "1..5"]),
@@ -201,6 +202,14 @@ def test_config_and_fields_together_are_refused():
         eco.EgoOctree(eco.Config(), box_side=3.0)
     with rejects(TypeError, "config must be a Config"):
         eco.EgoOctree("big")
+
+
+def test_sixty_four_bit_seeds():
+    assert eco.sim.SimConfig(seed=2 ** 64 - 1).seed == 2 ** 64 - 1
+    with rejects(ValueError, "seed = 18446744073709551616 is out of range"):
+        eco.sim.SimConfig(seed=2 ** 64)
+    with rejects(ValueError, "seed = -1 is out of range"):
+        eco.sim.SimConfig(seed=-1)
 
 
 def test_bad_simulator_config():
