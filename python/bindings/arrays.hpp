@@ -64,7 +64,8 @@ template <class T>
 [[nodiscard]] py::array_t<T> values_array(std::vector<T>&& values) {
   auto* owned = new std::vector<T>(std::move(values));
   const py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  return py::array_t<T>({owned->size()}, {sizeof(T)}, owned->empty() ? nullptr : owned->data(), owner);
+  return py::array_t<T>({owned->size()}, {sizeof(T)}, owned->empty() ? nullptr : owned->data(),
+                        owner);
 }
 /// (4, 4) float64 array of a transform.
 [[nodiscard]] py::array_t<double> matrix_array(const Eigen::Isometry3d& pose);

@@ -11,8 +11,7 @@ std::vector<Field<DensityCap>> Record<DensityCap>::fields() {
   return {
       field("cell_size", &DensityCap::cell_size,
             "[m] side of the density cell; typical 0.05-0.5. Must be > 0 when the cap is on."),
-      field("max_points", &DensityCap::max_points,
-            "points per cell; 0 = cap off, typical 1-10."),
+      field("max_points", &DensityCap::max_points, "points per cell; 0 = cap off, typical 1-10."),
   };
 }
 
@@ -57,8 +56,9 @@ void bind_config(py::module_& m) {
       .value("World", Frame::World, "The fixed world frame of the poses. Default.")
       .value("Ego", Frame::Ego, "World axes, origin at the current sensor position.");
 
-  bind_record<DensityCap>(m, "Optional cap on points per world-aligned cell (off while max_points == 0).",
-                          Access::ReadWrite);
+  bind_record<DensityCap>(
+      m, "Optional cap on points per world-aligned cell (off while max_points == 0).",
+      Access::ReadWrite);
   bind_record<Config>(m,
                       "Configuration of an EgoOctree, field for field with eco::Config in C++.\n\n"
                       "Config(**fields) checks every value and validates the whole (ValueError "

@@ -28,13 +28,14 @@ ScanData read_frame(const io::KittiSequence& seq, std::size_t i) {
 }
 
 /// A cloud from caller arrays, for the writers.
-io::PointCloud cloud_arg(py::handle points, py::handle intensity) {
+io::PointCloud cloud_arg(const py::object& points, const py::object& intensity) {
   const Rows3 rows(points, "points", /*allow_single=*/false);
   io::PointCloud cloud;
   cloud.points.reserve(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) cloud.points.push_back(rows.row(i).cast<float>());
   if (!intensity.is_none()) {
-    const py::array_t<float, py::array::forcecast> values(py::reinterpret_borrow<py::object>(intensity));
+    const py::array_t<float, py::array::forcecast> values(
+        py::reinterpret_borrow<py::object>(intensity));
     if (values.ndim() != 1 || std::size_t(values.shape(0)) != rows.size()) {
       throw py::value_error("intensity must have shape (" + std::to_string(rows.size()) +
                             ",), one value per point");
@@ -47,7 +48,7 @@ io::PointCloud cloud_arg(py::handle points, py::handle intensity) {
 /// A writer binding: checks the arrays with the GIL, writes without it.
 template <class Write>
 auto cloud_writer(Write write) {
-  return [write](const fs::path& path, py::handle points, py::handle intensity) {
+  return [write](const fs::path& path, const py::object& points, const py::object& intensity) {
     const io::PointCloud cloud = cloud_arg(points, intensity);
     py::gil_scoped_release no_gil;
     write(path, cloud);
@@ -102,13 +103,14 @@ void bind_io(py::module_& io) {
   def_frames(sequence, "Scans in the folder.", "read",
              "Scan `index` with its time, reflectance and labels (an eco.io.Scan).", &read_frame);
   sequence
-      .def(py::init([](const fs::path& folder, py::handle pose_frame, std::string poses_file) {
-             io::KittiOptions options;
-             options.pose_frame = enum_arg<io::PoseFrame>(pose_frame, "pose_frame");
-             options.poses_file = std::move(poses_file);
-             py::gil_scoped_release no_gil;
-             return io::KittiSequence(folder, options);
-           }),
+      .def(py::init(
+               [](const fs::path& folder, const py::object& pose_frame, std::string poses_file) {
+                 io::KittiOptions options;
+                 options.pose_frame = enum_arg<io::PoseFrame>(pose_frame, "pose_frame");
+                 options.poses_file = std::move(poses_file);
+                 py::gil_scoped_release no_gil;
+                 return io::KittiSequence(folder, options);
+               }),
            py::arg("folder"), py::arg("pose_frame") = io::PoseFrame::Auto,
            py::arg("poses_file") = "poses.txt")
       .def_property_readonly(
@@ -155,15 +157,16 @@ void bind_io(py::module_& io) {
   io.def(
       "read_pcd", [](const fs::path& path) { return read_cloud(path, io::read_pcd); },
       py::arg("path"),
-      "A PCD file (ascii, binary or binary_compressed): (points (N, 3) float32, intensity or None).");
+      "A PCD file (ascii, binary or binary_compressed): (points (N, 3) float32, intensity or "
+      "None).");
   io.def("write_ply", cloud_writer([](const fs::path& path, const io::PointCloud& cloud) {
-            io::write_ply(path, cloud);
-          }),
+           io::write_ply(path, cloud);
+         }),
          py::arg("path"), py::arg("points"), py::arg("intensity") = py::none(),
          "Writes points (N, 3) [and intensity (N,)] as binary little-endian PLY, float32.");
   io.def("write_pcd", cloud_writer([](const fs::path& path, const io::PointCloud& cloud) {
-            io::write_pcd(path, cloud);
-          }),
+           io::write_pcd(path, cloud);
+         }),
          py::arg("path"), py::arg("points"), py::arg("intensity") = py::none(),
          "Writes points (N, 3) [and intensity (N,)] as binary PCD, float32.");
 }

@@ -43,9 +43,9 @@ template <class S>
 struct Field {
   std::string name;
   std::string doc;
-  std::function<py::object(py::object self)> get;                        // live value
-  std::function<void(S&, py::handle, const std::string& prefix)> set;    // checked
-  std::function<py::object(const S&)> plain;   // ints, floats, strings, dicts: for to_dict
+  std::function<py::object(py::object self)> get;                      // live value
+  std::function<void(S&, py::handle, const std::string& prefix)> set;  // checked
+  std::function<py::object(const S&)> plain;  // ints, floats, strings, dicts: for to_dict
   std::function<std::string(const S&)> repr;
 };
 
@@ -102,7 +102,8 @@ E enum_arg(py::handle value, const std::string& name) {
     }
   }
   std::string choices;
-  for (const auto& item : members) choices += (choices.empty() ? "" : ", ") + py::cast<std::string>(item.first);
+  for (const auto& item : members)
+    choices += (choices.empty() ? "" : ", ") + py::cast<std::string>(item.first);
   const std::string got = py::repr(value);
   if (py::isinstance<py::str>(value)) {
     throw py::value_error(name + " = " + got + " is not one of: " + choices);
@@ -215,8 +216,9 @@ S record_from_dict(const py::dict& values, const std::string& prefix) {
     if (!found) {
       std::string known;
       for (const Field<S>& f : fields_of<S>()) known += (known.empty() ? "" : ", ") + f.name;
-      throw py::type_error(std::string(Record<S>::name) + "() got an unexpected keyword argument '" +
-                           prefix + name + "' (fields: " + known + ")");
+      throw py::type_error(std::string(Record<S>::name) +
+                           "() got an unexpected keyword argument '" + prefix + name +
+                           "' (fields: " + known + ")");
     }
   }
   validate_record(s);
@@ -287,16 +289,17 @@ py::class_<S> bind_record(py::handle scope, const std::string& summary, Access a
   for (const Field<S>& f : fields_of<S>()) {
     const py::cpp_function getter([get = f.get](py::object self) { return get(self); });
     if (access == Access::ReadWrite) {
-      const py::cpp_function setter(
-          [set = f.set](S& s, py::handle value) { set(s, value, ""); }, py::is_method(cls));
+      const py::cpp_function setter([set = f.set](S& s, py::handle value) { set(s, value, ""); },
+                                    py::is_method(cls));
       cls.def_property(f.name.c_str(), getter, setter, keep(f.doc));
     } else {
       cls.def_property_readonly(f.name.c_str(), getter, keep(f.doc));
     }
   }
-  cls.def("to_dict", [](const S& s) { return record_to_dict(s); },
-          "The fields as a dict of plain Python values (enums by name, nested records as dicts), "
-          "ready for json.dumps; the class's constructor takes it back as keyword arguments.");
+  cls.def(
+      "to_dict", [](const S& s) { return record_to_dict(s); },
+      "The fields as a dict of plain Python values (enums by name, nested records as dicts), "
+      "ready for json.dumps; the class's constructor takes it back as keyword arguments.");
   cls.def("__repr__", [](const S& s) { return record_repr(s); });
   cls.def("__eq__", [](const S& a, py::object b) {
     return py::isinstance<S>(b) && record_to_dict(a).equal(record_to_dict(py::cast<const S&>(b)));

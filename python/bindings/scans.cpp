@@ -37,8 +37,9 @@ std::size_t sequence_index(std::ptrdiff_t index, std::size_t size) {
 }
 
 void bind_scan(py::module_& io) {
-  py::class_<Scan>(io, "Scan", "One frame of a sequence: what KittiSequence.read() and "
-                               "Simulator.frame() return.")
+  py::class_<Scan>(io, "Scan",
+                   "One frame of a sequence: what KittiSequence.read() and "
+                   "Simulator.frame() return.")
       .def_readonly("index", &Scan::index, "frame number in its sequence")
       .def_readonly("time", &Scan::time, "[s] timestamp, or None when the sequence has none")
       .def_readonly("pose", &Scan::pose, "(4, 4) float64 world_T_lidar")
@@ -47,8 +48,8 @@ void bind_scan(py::module_& io) {
       .def_readonly("labels", &Scan::labels,
                     "(N,) uint32 SemanticKITTI labels, or None (ids >= 252 are moving objects)")
       .def("__repr__", [](const Scan& s) {
-        return "Scan(index=" + std::to_string(s.index) + ", points=" +
-               std::to_string(py::len(s.points)) + ")";
+        return "Scan(index=" + std::to_string(s.index) +
+               ", points=" + std::to_string(py::len(s.points)) + ")";
       });
 }
 

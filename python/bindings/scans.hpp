@@ -14,11 +14,11 @@ namespace eco::python {
 /// eco.io.Scan: a frame's index, time, pose, points and, when known, intensity and labels.
 struct Scan {
   std::size_t index = 0;
-  py::object time;        // float seconds, or None
-  py::object pose;        // (4, 4) float64 world_T_lidar
-  py::object points;      // (N, 3) float32, lidar frame
-  py::object intensity;   // (N,) float32, or None
-  py::object labels;      // (N,) uint32 SemanticKITTI labels, or None
+  py::object time;       // float seconds, or None
+  py::object pose;       // (4, 4) float64 world_T_lidar
+  py::object points;     // (N, 3) float32, lidar frame
+  py::object intensity;  // (N,) float32, or None
+  py::object labels;     // (N,) uint32 SemanticKITTI labels, or None
 };
 
 /// Everything a reader or the simulator produced for one frame. Built without the GIL, turned
@@ -62,10 +62,13 @@ void def_frames(py::class_<Frames>& cls, const char* len_doc, const char* scan_m
       [loaded](const Frames& frames, std::ptrdiff_t index) {
         return loaded(frames, index).pose_and_points();
       },
-      py::arg("index"), "(pose (4, 4) float64 world_T_lidar, points (N, 3) float32) of frame `index`.");
+      py::arg("index"),
+      "(pose (4, 4) float64 world_T_lidar, points (N, 3) float32) of frame `index`.");
   cls.def(
       scan_method,
-      [loaded](const Frames& frames, std::ptrdiff_t index) { return loaded(frames, index).to_python(); },
+      [loaded](const Frames& frames, std::ptrdiff_t index) {
+        return loaded(frames, index).to_python();
+      },
       py::arg("index"), scan_doc);
 }
 

@@ -20,8 +20,10 @@ struct Record<LidarModel> {
   static constexpr const char* name = "LidarModel";
   static std::vector<Field<LidarModel>> fields() {
     return {
-        field("beams", &LidarModel::beams, "laser beams, spread evenly over the vertical field of view"),
-        field("fov_up_deg", &LidarModel::fov_up_deg, "[deg] upper edge of the vertical field of view"),
+        field("beams", &LidarModel::beams,
+              "laser beams, spread evenly over the vertical field of view"),
+        field("fov_up_deg", &LidarModel::fov_up_deg,
+              "[deg] upper edge of the vertical field of view"),
         field("fov_down_deg", &LidarModel::fov_down_deg, "[deg] lower edge"),
         field("columns", &LidarModel::columns, "firings per revolution (360 degrees)"),
         field("min_range", &LidarModel::min_range, "[m] nearer returns are dropped (the vehicle)"),
@@ -77,7 +79,8 @@ ScanData simulated(const sim::Simulator& simulator, std::size_t i) {
   return data;
 }
 
-constexpr const char* kSimulatorDoc = R"(A LiDAR drive through a procedural city, for running ECO with no download.
+constexpr const char* kSimulatorDoc =
+    R"(A LiDAR drive through a procedural city, for running ECO with no download.
 
 Simulator(config=None, **fields) takes a SimConfig or its fields as keyword arguments, e.g.
 Simulator(frames=50, seed=3, lidar={"columns": 1000}). Deterministic: the same configuration gives
@@ -90,7 +93,8 @@ sensor on a car at 10 m/s, 10 Hz; returns from moving cars carry label 252.)";
 void bind_sim(py::module_& s) {
   bind_record<LidarModel>(s, "The simulated sensor.", Access::ReadWrite);
   bind_record<CityModel>(s, "The simulated city.", Access::ReadWrite);
-  bind_record<SimConfig>(s, "Configuration of a Simulator (eco::sim::SimConfig).", Access::ReadWrite);
+  bind_record<SimConfig>(s, "Configuration of a Simulator (eco::sim::SimConfig).",
+                         Access::ReadWrite);
 
   py::class_<sim::Simulator> simulator_class(s, "Simulator", kSimulatorDoc);
   def_frames(simulator_class, "Frames in the drive (config.frames).", "frame",

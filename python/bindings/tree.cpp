@@ -47,7 +47,7 @@ auto read() {
 /// The C++ update names its pose argument world_T_sensor; say which Python argument it was.
 template <class Work>
 UpdateStats update_with(SharedTree& self, const char* pose_name, const Eigen::Isometry3d& pose,
-                        py::handle points, Work&& work) {
+                        const py::object& points, Work&& work) {
   const Rows3 rows(points, "points", /*allow_single=*/false);
   std::vector<float> converted;
   try {
@@ -57,7 +57,7 @@ UpdateStats update_with(SharedTree& self, const char* pose_name, const Eigen::Is
   }
 }
 
-std::size_t k_arg(py::handle k) {
+std::size_t k_arg(const py::object& k) {
   const auto value = integer_arg<std::size_t>(k, "k");
   if (value == 0) throw py::value_error("k must be >= 1");
   return value;
@@ -75,7 +75,8 @@ py::tuple neighbors_arrays(const std::vector<Neighbor>& found) {
   return py::make_tuple(points, sq_dists);
 }
 
-py::tuple knn(const SharedTree& self, py::handle queries, py::handle k_value, py::handle frame_value) {
+py::tuple knn(const SharedTree& self, const py::object& queries, const py::object& k_value,
+              const py::object& frame_value) {
   const Rows3 q(queries, "queries", /*allow_single=*/true);
   q.require_finite();
   const std::size_t k = k_arg(k_value);
@@ -92,7 +93,8 @@ py::tuple knn(const SharedTree& self, py::handle queries, py::handle k_value, py
       const std::size_t n = tree.knn(q.row(i), found, frame);
       for (std::size_t j = 0; j < k; ++j, p += 3, ++d) {
         const bool real = j < n;  // fewer than k held: NaN points at infinite distance
-        for (int c = 0; c < 3; ++c) p[c] = real ? found[j].point[c] : std::numeric_limits<double>::quiet_NaN();
+        for (int c = 0; c < 3; ++c)
+          p[c] = real ? found[j].point[c] : std::numeric_limits<double>::quiet_NaN();
         *d = real ? found[j].sq_dist : std::numeric_limits<double>::infinity();
       }
     }
@@ -101,8 +103,8 @@ py::tuple knn(const SharedTree& self, py::handle queries, py::handle k_value, py
   return py::make_tuple(points, sq_dists);
 }
 
-py::object radius(const SharedTree& self, py::handle queries, py::handle radius_value,
-                  py::handle frame_value) {
+py::object radius(const SharedTree& self, const py::object& queries, const py::object& radius_value,
+                  const py::object& frame_value) {
   const Rows3 q(queries, "queries", /*allow_single=*/true);
   q.require_finite();
   const double r = number_arg(radius_value, "radius");
@@ -129,7 +131,8 @@ py::array_t<std::int64_t> keys_array(const std::vector<VoxelKey>& keys) {
   return out;
 }
 
-constexpr const char* kTreeDoc = R"(The Ego-Centric Octree: the points inside a cube of side L that travels with the sensor.
+constexpr const char* kTreeDoc =
+    R"(The Ego-Centric Octree: the points inside a cube of side L that travels with the sensor.
 
 EgoOctree(config=None, **fields) takes a Config, or Config's fields as keyword arguments
 (e.g. EgoOctree(box_side=30.0, insert_policy="AllInBox")); a bad value raises ValueError or
@@ -149,13 +152,14 @@ take any real array or list. Results are float64 numpy arrays in the query's fra
 void bind_tree(py::module_& m) {
   py::class_<SharedTree>(m, "EgoOctree", kTreeDoc)
       .def(py::init([](const py::object& config, const py::kwargs& fields) {
-             return std::make_unique<SharedTree>(config_or_fields<Config>(config, fields, "EgoOctree"));
+             return std::make_unique<SharedTree>(
+                 config_or_fields<Config>(config, fields, "EgoOctree"));
            }),
            py::arg("config") = py::none(),
            "Creates an empty tree from a Config (or a dict of its fields) or keyword fields.")
       .def(
           "update",
-          [](SharedTree& self, py::handle pose, py::handle points) {
+          [](SharedTree& self, const py::object& pose, const py::object& points) {
             return update_with(self, "pose", pose_arg(pose, "pose"), points,
                                [](EgoOctree& t, const Eigen::Isometry3d& p, ScanView s) {
                                  return t.update(p, s);
@@ -171,7 +175,7 @@ Returns the UpdateStats of this frame. A non-finite pose or a rotation that is n
 raises ValueError and leaves the tree unchanged.)")
       .def(
           "update_relative",
-          [](SharedTree& self, py::handle motion, py::handle points) {
+          [](SharedTree& self, const py::object& motion, const py::object& points) {
             return update_with(self, "motion", pose_arg(motion, "motion"), points,
                                [](EgoOctree& t, const Eigen::Isometry3d& p, ScanView s) {
                                  return t.update_relative(p, s);
@@ -187,35 +191,39 @@ queries: (M, 3) float32/float64 array, or one (3,) point.
 Returns (points, sq_dists): (M, k, 3) and (M, k) float64 arrays ((k, 3) and (k,) for one
 point). When fewer than k points are held, the missing entries are NaN points at distance inf.
 frame: Frame.World (default) or Frame.Ego (world axes, origin at the sensor), or its name.)")
-      .def("radius", &radius, py::arg("queries"), py::arg("radius"), py::arg("frame") = Frame::World,
+      .def("radius", &radius, py::arg("queries"), py::arg("radius"),
+           py::arg("frame") = Frame::World,
            R"(Held points within `radius` metres (closed ball) of each query, nearest first.
 
 For one (3,) query returns (points (n, 3), sq_dists (n,)); for (M, 3) queries, a list of M
 such pairs.)")
       .def(
           "box",
-          [](const SharedTree& self, py::handle lo_value, py::handle hi_value, py::handle frame_value) {
+          [](const SharedTree& self, const py::object& lo_value, const py::object& hi_value,
+             const py::object& frame_value) {
             const Eigen::Vector3d lo = vector3_arg(lo_value, "lo");
             const Eigen::Vector3d hi = vector3_arg(hi_value, "hi");
             const Frame frame = enum_arg<Frame>(frame_value, "frame");
-            return rows_array(reading(self, [&](const EgoOctree& t) { return t.box(lo, hi, frame); }));
+            return rows_array(
+                reading(self, [&](const EgoOctree& t) { return t.box(lo, hi, frame); }));
           },
           py::arg("lo"), py::arg("hi"), py::arg("frame") = Frame::World,
           "Held points inside the closed box [lo, hi] (3-vectors), as an (n, 3) array in no "
           "particular order.")
       .def(
           "voxelize",
-          [](const SharedTree& self, py::handle resolution, py::handle frame_value) {
+          [](const SharedTree& self, const py::object& resolution, const py::object& frame_value) {
             const double res = number_arg(resolution, "resolution");
             const Frame frame = enum_arg<Frame>(frame_value, "frame");
-            return rows_array(reading(self, [&](const EgoOctree& t) { return t.voxelize(res, frame); }));
+            return rows_array(
+                reading(self, [&](const EgoOctree& t) { return t.voxelize(res, frame); }));
           },
           py::arg("resolution"), py::arg("frame") = Frame::World,
           "Centres of the occupied voxels of the world-aligned grid of side `resolution` [m], "
           "as a (V, 3) array in key order.")
       .def(
           "voxel_keys",
-          [](const SharedTree& self, py::handle resolution) {
+          [](const SharedTree& self, const py::object& resolution) {
             const double res = number_arg(resolution, "resolution");
             return keys_array(reading(self, [&](const EgoOctree& t) { return t.voxel_keys(res); }));
           },
@@ -224,30 +232,23 @@ such pairs.)")
           "[i*resolution, (i+1)*resolution) per axis.")
       .def(
           "points",
-          [](const SharedTree& self) {
-            return rows_array(read<&EgoOctree::points>()(self));
-          },
+          [](const SharedTree& self) { return rows_array(read<&EgoOctree::points>()(self)); },
           "Every held point, world frame, as an (N, 3) float64 array in no particular order.")
       .def("stats", read<&EgoOctree::stats>(), "What the tree holds now (a Stats; O(nodes)).")
-      .def(
-          "check_invariants",
-          read<&EgoOctree::check_invariants>(),
-          "Checks every structural invariant; returns '' when all hold, else the first violation.")
+      .def("check_invariants", read<&EgoOctree::check_invariants>(),
+           "Checks every structural invariant; returns '' when all hold, else the first violation.")
       .def("__len__", read<&EgoOctree::size>(), "Points held.")
       .def_property_readonly("size", read<&EgoOctree::size>(), "Points held, O(1).")
-      .def_property_readonly(
-          "last_update",
-          read<&EgoOctree::last_update>(),
-          "The UpdateStats of the last update.")
+      .def_property_readonly("last_update", read<&EgoOctree::last_update>(),
+                             "The UpdateStats of the last update.")
       .def_property_readonly(
           "config", [](const SharedTree& self) { return self.tree.config(); },
           "The tree's Config (a copy: a tree's configuration is fixed).")
       .def_property_readonly(
           "pose",
-          [](const SharedTree& self) {
-            return matrix_array(read<&EgoOctree::pose>()(self));
-          },
-          "The current sensor pose world_T_sensor as a 4x4 array (identity before the first update).")
+          [](const SharedTree& self) { return matrix_array(read<&EgoOctree::pose>()(self)); },
+          "The current sensor pose world_T_sensor as a 4x4 array (identity before the first "
+          "update).")
       .def_property_readonly(
           "ego_box",
           [](const SharedTree& self) -> py::object {
@@ -262,14 +263,11 @@ such pairs.)")
             return vector_array(read<&EgoOctree::precision_origin>()(self));
           },
           "The world point that stored float coordinates are offsets from (a multiple of 1024 m).")
-      .def_property_readonly(
-          "frame_count",
-          read<&EgoOctree::frame_count>(),
-          "Updates taken so far.")
+      .def_property_readonly("frame_count", read<&EgoOctree::frame_count>(),
+                             "Updates taken so far.")
       .def("__repr__", [](const SharedTree& self) {
-        const auto [points, frames] = reading(self, [](const EgoOctree& t) {
-          return std::pair(t.size(), t.frame_count());
-        });
+        const auto [points, frames] =
+            reading(self, [](const EgoOctree& t) { return std::pair(t.size(), t.frame_count()); });
         return "EgoOctree(points=" + std::to_string(points) + ", frames=" + std::to_string(frames) +
                ", box_side=" + std::string(py::repr(py::float_(self.tree.config().box_side))) + ")";
       });
