@@ -14,6 +14,13 @@ def pytest_report_header(config):
     return f"eco {eco.__version__} from {eco.__file__}"
 
 
+def pytest_sessionstart(session):
+    """Under ctest, the package tested must be the build's, not an older one installed."""
+    expected = os.environ.get("ECO_EXPECT_PACKAGE")
+    if expected and Path(eco.__file__).resolve().parent != Path(expected).resolve():
+        raise pytest.UsageError(f"testing eco from {eco.__file__}, not the build's {expected}")
+
+
 @pytest.fixture(scope="session")
 def small_drive():
     """A short, sparse drive (32 beams, 500 columns) down a street at 3 m per frame, so the box

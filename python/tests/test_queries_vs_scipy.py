@@ -66,3 +66,14 @@ def test_voxelize_and_keys_agree_with_the_held_points(small_drive):
     np.testing.assert_allclose(tree.voxelize(0.5), (keys + 0.5) * 0.5)
     centre = tree.pose[:3, 3]
     np.testing.assert_allclose(tree.voxelize(0.5, frame="Ego") + centre, (keys + 0.5) * 0.5, atol=1e-9)
+
+
+def test_empty_batches_and_an_empty_tree():
+    tree = eco.EgoOctree()
+    points, sq_dists = tree.knn(np.zeros((0, 3)), 3)
+    assert points.shape == (0, 3, 3) and sq_dists.shape == (0, 3)
+    assert tree.radius(np.zeros((0, 3), dtype=np.float32), 1.0) == []
+    points, sq_dists = tree.knn([1.0, 2.0, 3.0], 2)  # nothing held yet
+    assert np.isnan(points).all() and np.isinf(sq_dists).all()
+    assert tree.points().shape == (0, 3) and tree.voxelize(1.0).shape == (0, 3)
+    assert tree.ego_box is None and len(tree) == 0
