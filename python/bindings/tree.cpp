@@ -12,6 +12,7 @@
 #include <mutex>
 #include <shared_mutex>
 #include <stdexcept>
+#include <thread>
 
 namespace eco::python {
 namespace {
@@ -63,6 +64,39 @@ std::size_t k_arg(const py::object& k) {
   return value;
 }
 
+/// Threads for a batch query: workers >= 1, or -1 for one per core (as scipy's `workers`).
+unsigned workers_arg(const py::object& value) {
+  const auto w = integer_arg<long long>(value, "workers");
+  if (w == -1) return std::max(1u, std::thread::hardware_concurrency());
+  if (w < 1) {
+    throw py::value_error("workers = " + std::to_string(w) + " must be >= 1, or -1 for every core");
+  }
+  return unsigned(w);
+}
+
+/// Calls work(begin, end) on contiguous slices of [0, count), one thread per slice, the calling
+/// thread taking the first; rethrows the first exception a slice threw once all have joined.
+template <class Work>
+void in_slices(std::size_t count, unsigned workers, const Work& work) {
+  const std::size_t slices = std::clamp<std::size_t>(workers, 1, std::max<std::size_t>(count, 1));
+  const std::size_t step = (count + slices - 1) / std::max<std::size_t>(slices, 1);
+  std::vector<std::exception_ptr> errors(slices);
+  const auto run = [&](std::size_t s) {
+    try {
+      work(std::min(count, s * step), std::min(count, (s + 1) * step));
+    } catch (...) {
+      errors[s] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t s = 1; s < slices; ++s) threads.emplace_back(run, s);
+  run(0);
+  for (std::thread& t : threads) t.join();
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+}
+
 py::tuple neighbors_arrays(const std::vector<Neighbor>& found) {
   py::array_t<double> points({found.size(), std::size_t(3)});
   py::array_t<double> sq_dists(found.size());
@@ -76,42 +110,50 @@ py::tuple neighbors_arrays(const std::vector<Neighbor>& found) {
 }
 
 py::tuple knn(const SharedTree& self, const py::object& queries, const py::object& k_value,
-              const py::object& frame_value) {
+              const py::object& frame_value, const py::object& workers_value) {
   const Rows3 q(queries, "queries", /*allow_single=*/true);
   q.require_finite();
   const std::size_t k = k_arg(k_value);
   const Frame frame = enum_arg<Frame>(frame_value, "frame");
+  const unsigned workers = workers_arg(workers_value);
   const std::size_t m = q.size();
   using Shape = std::vector<std::size_t>;
   py::array_t<double> points(q.single() ? Shape{k, 3} : Shape{m, k, 3});
   py::array_t<double> sq_dists(q.single() ? Shape{k} : Shape{m, k});
-  double* p = points.mutable_data();
-  double* d = sq_dists.mutable_data();
+  double* const all_points = points.mutable_data();
+  double* const all_sq_dists = sq_dists.mutable_data();
   reading(self, [&](const EgoOctree& tree) {
-    std::vector<Neighbor> found(std::min(k, tree.size()));
-    for (std::size_t i = 0; i < m; ++i) {
-      const std::size_t n = tree.knn(q.row(i), found, frame);
-      for (std::size_t j = 0; j < k; ++j, p += 3, ++d) {
-        const bool real = j < n;  // fewer than k held: NaN points at infinite distance
-        for (int c = 0; c < 3; ++c)
-          p[c] = real ? found[j].point[c] : std::numeric_limits<double>::quiet_NaN();
-        *d = real ? found[j].sq_dist : std::numeric_limits<double>::infinity();
+    in_slices(m, workers, [&](std::size_t begin, std::size_t end) {
+      std::vector<Neighbor> found(std::min(k, tree.size()));
+      double* p = all_points + 3 * k * begin;
+      double* d = all_sq_dists + k * begin;
+      for (std::size_t i = begin; i < end; ++i) {
+        const std::size_t n = tree.knn(q.row(i), found, frame);
+        for (std::size_t j = 0; j < k; ++j, p += 3, ++d) {
+          const bool real = j < n;  // fewer than k held: NaN points at infinite distance
+          for (int c = 0; c < 3; ++c)
+            p[c] = real ? found[j].point[c] : std::numeric_limits<double>::quiet_NaN();
+          *d = real ? found[j].sq_dist : std::numeric_limits<double>::infinity();
+        }
       }
-    }
+    });
     return 0;
   });
   return py::make_tuple(points, sq_dists);
 }
 
 py::object radius(const SharedTree& self, const py::object& queries, const py::object& radius_value,
-                  const py::object& frame_value) {
+                  const py::object& frame_value, const py::object& workers_value) {
   const Rows3 q(queries, "queries", /*allow_single=*/true);
   q.require_finite();
   const double r = number_arg(radius_value, "radius");
   const Frame frame = enum_arg<Frame>(frame_value, "frame");
+  const unsigned workers = workers_arg(workers_value);
   const auto found = reading(self, [&](const EgoOctree& tree) {
     std::vector<std::vector<Neighbor>> out(q.size());
-    for (std::size_t i = 0; i < q.size(); ++i) out[i] = tree.radius(q.row(i), r, frame);
+    in_slices(q.size(), workers, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) out[i] = tree.radius(q.row(i), r, frame);
+    });
     return out;
   });
   if (q.single()) return neighbors_arrays(found.front());
@@ -185,18 +227,20 @@ raises ValueError and leaves the tree unchanged.)")
           R"(update() with the relative motion previous_T_current (4x4 or 3x4): the new sensor
 pose expressed in the previous sensor frame. The first frame starts from the identity pose.)")
       .def("knn", &knn, py::arg("queries"), py::arg("k"), py::arg("frame") = Frame::World,
+           py::arg("workers") = 1,
            R"(The k nearest held points to each query, nearest first, exact.
 
 queries: (M, 3) float32/float64 array, or one (3,) point.
 Returns (points, sq_dists): (M, k, 3) and (M, k) float64 arrays ((k, 3) and (k,) for one
 point). When fewer than k points are held, the missing entries are NaN points at distance inf.
-frame: Frame.World (default) or Frame.Ego (world axes, origin at the sensor), or its name.)")
+frame: Frame.World (default) or Frame.Ego (world axes, origin at the sensor), or its name.
+workers: threads sharing the batch (default 1; -1: one per core). Answers do not depend on it.)")
       .def("radius", &radius, py::arg("queries"), py::arg("radius"),
-           py::arg("frame") = Frame::World,
+           py::arg("frame") = Frame::World, py::arg("workers") = 1,
            R"(Held points within `radius` metres (closed ball) of each query, nearest first.
 
 For one (3,) query returns (points (n, 3), sq_dists (n,)); for (M, 3) queries, a list of M
-such pairs.)")
+such pairs. workers: as for knn().)")
       .def(
           "box",
           [](const SharedTree& self, const py::object& lo_value, const py::object& hi_value,

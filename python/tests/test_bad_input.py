@@ -130,6 +130,23 @@ def test_bad_k(tree, k, error, words):
         tree.knn([0.0, 0.0, 0.0], k)
 
 
+@pytest.mark.parametrize("workers, error, words", [
+    (0, ValueError, ["workers = 0", ">= 1, or -1"]),
+    (-2, ValueError, ["workers = -2"]),
+    (1.5, TypeError, ["workers must be an integer"]),
+])
+def test_bad_workers(tree, workers, error, words):
+    with rejects(error, *words):
+        tree.knn(np.zeros((4, 3)), 1, workers=workers)
+    with rejects(error, *words):
+        tree.radius(np.zeros((4, 3)), 1.0, workers=workers)
+
+
+def test_an_error_inside_a_worker_is_raised_not_lost(tree):
+    with rejects(ValueError, "radius", "-1"):
+        tree.radius(np.zeros((50, 3)), -1.0, workers=4)
+
+
 def test_numpy_integers_are_integers(tree):
     points, _ = tree.knn([0.0, 0.0, 0.0], np.int64(2))
     assert points.shape == (2, 3)

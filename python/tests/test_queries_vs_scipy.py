@@ -77,3 +77,19 @@ def test_empty_batches_and_an_empty_tree():
     assert np.isnan(points).all() and np.isinf(sq_dists).all()
     assert tree.points().shape == (0, 3) and tree.voxelize(1.0).shape == (0, 3)
     assert tree.ego_box is None and len(tree) == 0
+
+
+def test_workers_share_a_batch_without_changing_the_answers(small_drive):
+    tree = eco.EgoOctree(insert_policy="AllInBox")
+    for pose, points in list(small_drive)[:3]:
+        tree.update(pose, points)
+    queries = pose[:3, 3] + np.random.default_rng(4).uniform(-9, 9, size=(301, 3))
+    one = tree.knn(queries, 7)
+    for workers in (2, 3, -1, 1000):
+        many = tree.knn(queries, 7, workers=workers)
+        np.testing.assert_array_equal(many[0], one[0])
+        np.testing.assert_array_equal(many[1], one[1])
+        for (a_points, a_sq), (b_points, b_sq) in zip(tree.radius(queries, 1.5),
+                                                      tree.radius(queries, 1.5, workers=workers)):
+            np.testing.assert_array_equal(a_points, b_points)
+            np.testing.assert_array_equal(a_sq, b_sq)
