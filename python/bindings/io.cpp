@@ -11,19 +11,21 @@
 
 #include <pybind11/stl/filesystem.h>
 
+#include <span>
+
 namespace eco::python {
 namespace {
 
 namespace fs = std::filesystem;
 
-ScanData read_frame(const io::KittiSequence& seq, std::size_t i) {
+ScanData read_frame(const io::KittiSequence& seq, std::size_t i, FrameParts parts) {
   ScanData data;
   io::KittiFrame frame = seq.read(i);
   data.index = i;
   data.pose = frame.world_T_lidar;
   data.cloud = std::move(frame.cloud);
   if (i < seq.times().size()) data.time = seq.times()[i];
-  if (seq.has_labels()) data.labels = seq.read_labels(i);
+  if (parts == FrameParts::Everything && seq.has_labels()) data.labels = seq.read_labels(i);
   return data;
 }
 
@@ -34,8 +36,7 @@ io::PointCloud cloud_arg(const py::object& points, const py::object& intensity) 
   cloud.points.reserve(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) cloud.points.push_back(rows.row(i).cast<float>());
   if (!intensity.is_none()) {
-    const py::array_t<float, py::array::forcecast> values(
-        py::reinterpret_borrow<py::object>(intensity));
+    const py::array_t<float, py::array::forcecast> values(intensity);
     if (values.ndim() != 1 || std::size_t(values.shape(0)) != rows.size()) {
       throw py::value_error("intensity must have shape (" + std::to_string(rows.size()) +
                             ",), one value per point");
@@ -65,7 +66,7 @@ py::tuple read_cloud(const fs::path& path, Read read) {
   return cloud_arrays(std::move(cloud));
 }
 
-py::array_t<double> poses_array(const std::vector<Eigen::Isometry3d>& poses) {
+py::array_t<double> poses_array(std::span<const Eigen::Isometry3d> poses) {
   py::array_t<double> out({poses.size(), std::size_t(4), std::size_t(4)});
   auto a = out.mutable_unchecked<3>();
   for (std::size_t i = 0; i < poses.size(); ++i) {
@@ -116,7 +117,7 @@ void bind_io(py::module_& io) {
       .def_property_readonly(
           "poses",
           [](const io::KittiSequence& seq) {
-            return poses_array({seq.poses().begin(), seq.poses().end()});
+            return poses_array(seq.poses());
           },
           "(n, 4, 4) float64 world_T_lidar of every scan.")
       .def_property_readonly(

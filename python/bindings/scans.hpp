@@ -44,30 +44,34 @@ void bind_scan(py::module_& io);
 /// IndexError (naming the index and the size) past either end.
 [[nodiscard]] std::size_t sequence_index(std::ptrdiff_t index, std::size_t size);
 
+/// How much of a frame a caller wants: iterating needs the pose and points only, so a reader can
+/// skip the rest (a KITTI folder's label files).
+enum class FrameParts { PoseAndPoints, Everything };
+
 /// Gives a class of frames (a KITTI folder, the simulator) Python's sequence protocol:
 /// __len__, and __getitem__ (negative indices too) returning (pose, points), so iterating yields
 /// the pairs EgoOctree.update() takes; and `scan_method(index)` returning the whole Scan.
-/// `load(object, i)` makes frame i; it runs without the GIL.
+/// `load(object, i, parts)` makes frame i; it runs without the GIL.
 template <class Frames, class Load>
 void def_frames(py::class_<Frames>& cls, const char* len_doc, const char* scan_method,
                 const char* scan_doc, Load load) {
-  const auto loaded = [load](const Frames& frames, std::ptrdiff_t index) {
+  const auto loaded = [load](const Frames& frames, std::ptrdiff_t index, FrameParts parts) {
     const std::size_t i = sequence_index(index, frames.size());
     py::gil_scoped_release no_gil;
-    return load(frames, i);
+    return load(frames, i, parts);
   };
   cls.def("__len__", &Frames::size, len_doc);
   cls.def(
       "__getitem__",
       [loaded](const Frames& frames, std::ptrdiff_t index) {
-        return loaded(frames, index).pose_and_points();
+        return loaded(frames, index, FrameParts::PoseAndPoints).pose_and_points();
       },
       py::arg("index"),
       "(pose (4, 4) float64 world_T_lidar, points (N, 3) float32) of frame `index`.");
   cls.def(
       scan_method,
       [loaded](const Frames& frames, std::ptrdiff_t index) {
-        return loaded(frames, index).to_python();
+        return loaded(frames, index, FrameParts::Everything).to_python();
       },
       py::arg("index"), scan_doc);
 }

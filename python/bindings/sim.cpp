@@ -68,7 +68,8 @@ struct Record<SimConfig> {
 
 namespace {
 
-ScanData simulated(const sim::Simulator& simulator, std::size_t i) {
+/// The simulator makes the labels with the points, so a frame is always made whole.
+ScanData simulated(const sim::Simulator& simulator, std::size_t i, FrameParts /*parts*/) {
   sim::SimFrame frame = simulator.frame(i);
   ScanData data;
   data.index = i;

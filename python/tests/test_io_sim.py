@@ -85,3 +85,12 @@ def test_real_sequence_streams_and_matches_scipy(shared_dataset, name):
     check_against_scipy(tree, rng, queries=60)
     lo, hi = tree.ego_box
     np.testing.assert_allclose((lo + hi) / 2, sequence.poses[frames[-1]][:3, 3], atol=1e-9)
+
+
+def test_iterating_reads_only_poses_and_scans(tmp_path):
+    tiny().write_kitti(tmp_path / "seq")
+    (tmp_path / "seq" / "labels" / "000001.label").write_bytes(b"\x00")  # a broken label file
+    sequence = eco.io.KittiSequence(tmp_path / "seq")
+    assert len(sequence[1][1]) > 1000  # (pose, points): labels are not opened
+    with pytest.raises(eco.io.Error, match="000001.label"):
+        sequence.read(1)  # the whole Scan reads them, and names the file at fault
