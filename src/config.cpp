@@ -21,7 +21,13 @@ double Config::quantum() const {
   if (recentring == Recentring::Exact) return 0.0;
   // q * 2^k = L + q exactly would let the box touch the root's walls when the sensor sits on a
   // half-quantum tie; a relative 1e-9 margin keeps it strictly inside despite rounding.
-  return box_side / double((1u << quantum_levels) - 1u) * (1.0 + 1e-9);
+  const double least = box_side / double((1u << quantum_levels) - 1u) * (1.0 + 1e-9);
+  if (!(voxel_size > 0.0)) return least;
+  // the smallest voxel_size * 2^j that is at least `least`: cells below depth k are then voxels
+  int j = int(std::ceil(std::log2(least / voxel_size)));
+  while (std::ldexp(voxel_size, j) < least) ++j;
+  while (std::ldexp(voxel_size, j - 1) >= least) --j;
+  return std::ldexp(voxel_size, j);
 }
 
 double Config::root_side() const {
@@ -61,10 +67,22 @@ void Config::validate() const {
     reject("min_cell_size", min_cell_size,
            "is too small for box_side: more than 24 levels below the root");
   }
-  if (density_cap.enabled() &&
-      (!std::isfinite(density_cap.cell_size) || density_cap.cell_size <= 0.0)) {
-    reject("density_cap.cell_size", density_cap.cell_size,
-           "must be finite and > 0 m while density_cap.max_points > 0");
+  if (!std::isfinite(voxel_size) || voxel_size < 0.0 || voxel_size > box_side) {
+    reject("voxel_size", voxel_size, "must be finite, >= 0 m (0 = no alignment) and at most box_side");
+  }
+  if (density_cap.enabled()) {
+    const double cell = density_cap.cell_size;
+    if (!std::isfinite(cell) || cell <= 0.0) {
+      reject("density_cap.cell_size", cell, "must be finite and > 0 m while density_cap.max_points > 0");
+    }
+    if (cell > box_side) reject("density_cap.cell_size", cell, "must not exceed box_side");
+    // held points span at most box_side / cell + 2 cells per axis: CellCounts names them mod 2^18
+    if (box_side / cell > double((1u << 18) - 2u)) {
+      reject("density_cap.cell_size", cell, "must be at least box_side / 262142 (the cell counts' reach)");
+    }
+    if (density_cap.max_points > 1023) {
+      reject("density_cap.max_points", density_cap.max_points, "must be at most 1023");
+    }
   }
 }
 

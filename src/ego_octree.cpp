@@ -57,7 +57,8 @@ Stats tree_stats(const Tree& t) {
   s.points = t.root == kNone ? 0 : t.nodes[t.root].count;
   s.nodes = t.nodes.live();
   s.bytes = sizeof(Tree) + t.nodes.bytes() + t.points.bytes() + t.start.slots.capacity() * sizeof(std::uint32_t) +
-            (t.moving.capacity() + t.scratch.capacity()) * sizeof(StoredPoint);
+            (t.moving.capacity() + t.scratch.capacity() + t.batch_buffers.points.capacity()) * sizeof(StoredPoint) +
+            t.density.bytes();
   if (t.root == kNone) return s;
   double depth_sum = 0.0;
   auto walk = [&](auto&& self, std::uint32_t id) -> void {

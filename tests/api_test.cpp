@@ -85,7 +85,8 @@ TEST(Api, CallerBufferKnnAndStatistics) {
 }
 
 TEST(Api, UpdateStatsCountWhatHappened) {
-  Config cfg;  // ShiftInOnly
+  Config cfg;
+  cfg.insert_policy = InsertPolicy::ShiftInOnly;
   EgoOctree tree(cfg);
   std::vector<Eigen::Vector3f> scan = {{0, 0, 0}, {9.5f, 0, 0}, {11, 0, 0}};
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();

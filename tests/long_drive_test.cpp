@@ -28,6 +28,7 @@ TEST_P(LongDrive, MemoryAndDepthStayBoundedOverFiveThousandFrames) {
   Config cfg;
   cfg.recentring = GetParam();
   cfg.leaf_capacity = 8;
+  cfg.insert_policy = InsertPolicy::ShiftInOnly;  // the paper's: each frame adds only what entered
   EgoOctree tree(cfg);
   Oracle oracle(cfg);
   HashedWorld world;

@@ -29,11 +29,12 @@ enum class InsertPolicy {
 };
 
 /// Optional cap on points per world-aligned cell: at most `max_points` points are held in any cell
-/// [i*cell_size, (i+1)*cell_size)^3. A new point that would exceed the cap is not inserted (the
-/// points already held are kept). Off while `max_points == 0`.
+/// [i*cell_size, (i+1)*cell_size)^3 (walls in double: see EgoOctree::voxel_keys). A new point that
+/// would exceed the cap is not inserted (the points already held are kept). Off while
+/// `max_points == 0`. Counts are kept per cell as points come and go, so the test is O(1).
 struct DensityCap {
-  double cell_size = 0.0;    ///< [m] side of the density cell; typical 0.05–0.5. Must be > 0 when on.
-  std::uint32_t max_points = 0;  ///< points per cell; 0 = cap off, typical 1–10.
+  double cell_size = 0.0;    ///< [m] side of the density cell; typical 0.05–0.5; in (box_side / 262142, box_side].
+  std::uint32_t max_points = 0;  ///< points per cell; 0 = cap off, typical 1–10, at most 1023.
 
   [[nodiscard]] bool enabled() const { return max_points > 0; }
 };
@@ -45,15 +46,23 @@ struct Config {
   double min_cell_size = 0.05;  ///< [m] cells are never split below this side; typical 0.01–0.5.
   Recentring recentring = Recentring::Quantised;  ///< see Recentring.
   std::uint32_t quantum_levels = 3;  ///< k, Quantised only: q = L / (2^k - 1); range 1–5.
-  InsertPolicy insert_policy = InsertPolicy::ShiftInOnly;  ///< see InsertPolicy.
+  /// see InsertPolicy: every scan point in the box by default (raw scans); the paper's
+  /// ShiftInOnly suits a pre-aggregated map.
+  InsertPolicy insert_policy = InsertPolicy::AllInBox;
   DensityCap density_cap{};  ///< optional, off by default.
   std::uint32_t max_age_frames = 0;  ///< drop points inserted more than this many frames ago; 0 = off.
+  /// [m] Quantised only: the voxel size you will ask voxel maps at. The quantum is rounded up to
+  /// voxel_size * 2^j, so cells of depth >= k are world voxels of side voxel_size * 2^i and
+  /// voxel_keys(voxel_size * 2^i) walks nodes instead of points. 0 = the paper's quantum
+  /// L / (2^k - 1); at most box_side.
+  double voxel_size = 0.1;
 
   /// Throws std::invalid_argument naming the field and value when the configuration is unusable.
   void validate() const;
 
-  /// The re-centring quantum q = L / (2^k - 1) [m] (widened by 1e-9 relative, so the box stays
-  /// strictly inside the root cell under rounding); 0 in Exact mode.
+  /// The re-centring quantum [m]: q = L / (2^k - 1) (widened by 1e-9 relative, so the box stays
+  /// strictly inside the root cell under rounding), rounded up to voxel_size * 2^j when
+  /// voxel_size > 0; 0 in Exact mode.
   [[nodiscard]] double quantum() const;
   /// Side [m] of the root cell: L in Exact mode, q * 2^k (>= L + q) in Quantised mode.
   [[nodiscard]] double root_side() const;

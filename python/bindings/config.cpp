@@ -10,8 +10,10 @@ namespace eco::python {
 std::vector<Field<DensityCap>> Record<DensityCap>::fields() {
   return {
       field("cell_size", &DensityCap::cell_size,
-            "[m] side of the density cell; typical 0.05-0.5. Must be > 0 when the cap is on."),
-      field("max_points", &DensityCap::max_points, "points per cell; 0 = cap off, typical 1-10."),
+            "[m] side of the density cell; typical 0.05-0.5; in (box_side / 262142, box_side] "
+            "when the cap is on."),
+      field("max_points", &DensityCap::max_points,
+            "points per cell; 0 = cap off, typical 1-10, at most 1023."),
   };
 }
 
@@ -29,13 +31,17 @@ std::vector<Field<Config>> Record<Config>::fields() {
       field("quantum_levels", &Config::quantum_levels,
             "k, Quantised only: quantum q = L / (2^k - 1); range 1-5."),
       field("insert_policy", &Config::insert_policy,
-            "InsertPolicy.ShiftInOnly (the paper's: only points in the newly entered region) "
-            "or InsertPolicy.AllInBox (every scan point in the box: raw scans)."),
+            "InsertPolicy.AllInBox (default: every scan point in the box, for raw scans) or "
+            "InsertPolicy.ShiftInOnly (the paper's: only points in the newly entered region)."),
       field("density_cap", &Config::density_cap,
             "DensityCap: at most max_points points per world-aligned cell of side cell_size; "
             "off by default."),
       field("max_age_frames", &Config::max_age_frames,
             "drop points inserted more than this many frames ago; 0 = off."),
+      field("voxel_size", &Config::voxel_size,
+            "[m] Quantised only: the voxel size voxel maps will be asked at; the quantum is "
+            "rounded up to voxel_size * 2^j so voxel_keys(voxel_size * 2^i) walks nodes, not "
+            "points. 0 = the paper's quantum L / (2^k - 1)."),
   };
 }
 
@@ -49,9 +55,10 @@ void bind_config(py::module_& m) {
   py::enum_<InsertPolicy>(m, "InsertPolicy", "Which scan points an update inserts.")
       .value("ShiftInOnly", InsertPolicy::ShiftInOnly,
              "Only points in Box(p_t) minus Box(p_t-1): a static, pre-aggregated map streamed by "
-             "pose (the paper's policy). Default.")
+             "pose (the paper's policy).")
       .value("AllInBox", InsertPolicy::AllInBox,
-             "Every scan point inside Box(p_t): raw scans (pair with a density cap or age limit).");
+             "Every scan point inside Box(p_t): raw scans (pair with a density cap or age limit). "
+             "Default.");
   py::enum_<Frame>(m, "Frame", "The frame in which query points are given and results returned.")
       .value("World", Frame::World, "The fixed world frame of the poses. Default.")
       .value("Ego", Frame::Ego, "World axes, origin at the current sensor position.");

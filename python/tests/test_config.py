@@ -19,6 +19,7 @@ CHANGED = {
     "insert_policy": eco.InsertPolicy.AllInBox,
     "density_cap": eco.DensityCap(cell_size=0.2, max_points=3),
     "max_age_frames": 40,
+    "voxel_size": 0.25,
 }
 
 
@@ -29,9 +30,10 @@ def test_defaults_are_the_cpp_defaults():
         "min_cell_size": 0.05,
         "recentring": "Quantised",
         "quantum_levels": 3,
-        "insert_policy": "ShiftInOnly",
+        "insert_policy": "AllInBox",
         "density_cap": {"cell_size": 0.0, "max_points": 0},
         "max_age_frames": 0,
+        "voxel_size": 0.1,
     }
 
 
@@ -88,9 +90,11 @@ def test_tree_config_is_a_copy():
 
 
 def test_derived_values():
-    config = eco.Config(box_side=21.0, quantum_levels=3)
+    config = eco.Config(box_side=21.0, quantum_levels=3, voxel_size=0.0)
     assert config.quantum == pytest.approx(3.0, rel=1e-8)
     assert config.root_side == pytest.approx(24.0, rel=1e-8)
+    aligned = eco.Config(box_side=21.0, quantum_levels=3)  # voxel_size 0.1: q = 0.1 * 2^5
+    assert aligned.quantum == 3.2 and aligned.root_side == 25.6
     assert eco.Config(recentring="Exact").quantum == 0.0
     assert config.max_depth > 0
 

@@ -20,7 +20,7 @@ GlobalOctree::GlobalOctree(std::string name, const Config& config, bool deletes)
 }
 
 void GlobalOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan);
+  detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, tree_.cfg);
   detail::Tree& t = tree_;
   t.last = UpdateStats{};
   t.last.scan_points = scan.count;

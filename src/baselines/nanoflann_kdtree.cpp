@@ -56,7 +56,7 @@ class NanoflannKdTree final : public Method {
   [[nodiscard]] std::string name() const override { return "nanoflann"; }
 
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
-    detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan);
+    detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, cfg_);
     const Eigen::Vector3d position = world_T_sensor.translation();
     const Eigen::Vector3d anchor = detail::precision_origin_for(position, anchor_, frames_ == 0);
     if (anchor != anchor_) {  // re-express against the new origin, as ECO does

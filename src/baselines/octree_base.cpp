@@ -20,7 +20,7 @@ class OctreeBase final : public TreeMethod {
   explicit OctreeBase(const Config& config) : TreeMethod("octree_base", rebuilt_from_the_box(config)) {}
 
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
-    detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan);
+    detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, tree_.cfg);
     detail::Tree& t = tree_;
     t.last = UpdateStats{};
     t.last.scan_points = scan.count;

@@ -10,10 +10,23 @@
 
 namespace eco::detail {
 
-/// Index of the world-aligned grid cell of side `size` holding a stored coordinate:
-/// floor((origin + stored) / size). Density cells and voxels both use it.
+/// Index of the world-aligned grid cell of side `size` holding a stored coordinate: the i with
+/// i*size - origin <= stored < (i+1)*size - origin, the walls computed in double (the contract's
+/// rule for density cells and voxels). These are the tree's own lattice walls when `size` is a
+/// lattice cell side, so cells and voxels agree to the last bit. The caller guarantees
+/// grid_fits(); then the floor is off by at most one step and the walls settle it.
 inline std::int64_t world_grid_index(double origin, float stored, double size) {
-  return std::int64_t(std::floor((origin + double(stored)) / size));
+  const double f = stored;
+  auto i = std::int64_t(std::floor((origin + f) / size));
+  while (f < double(i) * size - origin) --i;
+  while (f >= double(i + 1) * size - origin) ++i;
+  return i;
+}
+
+/// Whether the grid of side `size` names every coordinate within `reach` metres of the world
+/// origin by an exact 64-bit index with distinct walls: reach / size below 2^50.
+inline bool grid_fits(double reach, double size) {
+  return std::isfinite(reach) && size > 0 && reach / size < 0x1p50;
 }
 
 /// Tight bounds of the points below a node (float, like the points).

@@ -54,6 +54,113 @@ void Tree::insert(const StoredPoint& s) {
   finger = {id, cell};
 }
 
+void Tree::insert_batch(std::vector<StoredPoint>& batch) {
+  if (batch.empty()) return;
+  finger = {};
+  std::vector<StoredPoint>& temp = batch_buffers.points;
+  temp.resize(batch.size());
+  // Group the points by their start-depth cell (a counting sort), then insert each group below
+  // its start node and add it to the ancestors once.
+  const int depth = start.depth;
+  std::vector<std::uint32_t>& first = batch_buffers.group_start;
+  first.assign((depth == 0 ? 1 : start.slots.size()) + 1, 0);
+  if (depth == 0) {
+    first[1] = std::uint32_t(batch.size());
+  } else {
+    std::vector<std::uint32_t>& slot_of = batch_buffers.slot_of;
+    slot_of.resize(batch.size());
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      const std::int64_t slot = start_slot(lattice.cell_at(depth, batch[i].p));
+      assert(slot >= 0);
+      slot_of[i] = std::uint32_t(slot);
+      ++first[std::size_t(slot) + 1];
+    }
+    for (std::size_t b = 0; b + 1 < first.size(); ++b) first[b + 1] += first[b];
+    std::vector<std::uint32_t>& at = batch_buffers.group_end;
+    at.assign(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < batch.size(); ++i) temp[at[slot_of[i]]++] = batch[i];
+    batch.swap(temp);
+  }
+  for (std::size_t b = 0; b + 1 < first.size(); ++b) {
+    if (first[b] == first[b + 1]) continue;
+    StoredPoint* group = batch.data() + first[b];
+    const std::uint32_t m = first[b + 1] - first[b];
+    Cell cell = depth == 0 ? root_cell : lattice.cell_at(depth, group->p);
+    const std::uint32_t id = depth == 0 ? root : start_node(cell, cell);
+    insert_range(id, cell, group, group + m, temp.data() + first[b]);
+    const Node& top = nodes[id];
+    for (std::uint32_t up = top.parent; up != kNone; up = nodes[up].parent) {
+      Node& n = nodes[up];
+      n.count += m;
+      n.bounds.merge(top.bounds);
+      n.oldest = std::min(n.oldest, top.oldest);
+    }
+  }
+}
+
+std::uint32_t Tree::start_node(const Cell& cell, Cell& at) {
+  const std::int64_t slot = start_slot(cell);
+  if (slot >= 0 && start.slots[std::size_t(slot)] != kNone) {
+    at = cell;
+    return start.slots[std::size_t(slot)];
+  }
+  std::uint32_t id = root;
+  const Cell target = cell;
+  at = root_cell;
+  while (at.depth < target.depth && !nodes[id].leaf) {
+    const int o = lattice.octant_of(at, target);
+    id = child_or_new(id, at, o);
+    at = lattice.child(at, o);
+  }
+  return id;
+}
+
+void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* first, StoredPoint* last,
+                        StoredPoint* temp) {
+  const auto m = std::uint32_t(last - first);
+  if (nodes[id].leaf && (nodes[id].count + m <= cfg.leaf_capacity || cell.depth >= lattice.max_depth)) {
+    Node& n = nodes[id];
+    for (const StoredPoint* s = first; s != last; ++s) {
+      points.push(n.link, n.count++, *s);
+      n.bounds.grow(s->p[0], s->p[1], s->p[2]);
+      n.oldest = std::min(n.oldest, s->stamp);
+    }
+    return;
+  }
+  if (nodes[id].leaf) split(id, cell);  // holds at most leaf_capacity: its children need no split
+  // Partition by octant into `temp` (a counting sort); the children read from there and use
+  // this range as theirs.
+  const std::int64_t half = lattice.side(cell.depth) / 2;
+  const std::array<double, 3> wall{lattice.wall(0, cell.lo[0] + half), lattice.wall(1, cell.lo[1] + half),
+                                   lattice.wall(2, cell.lo[2] + half)};
+  auto octant = [&](const StoredPoint& s) {
+    return int(double(s.p[0]) >= wall[0]) | int(double(s.p[1]) >= wall[1]) << 1 |
+           int(double(s.p[2]) >= wall[2]) << 2;
+  };
+  std::array<std::uint32_t, 9> begin{};
+  Aabb bounds;
+  std::uint32_t oldest = kNone;
+  for (const StoredPoint* s = first; s != last; ++s) {
+    ++begin[std::size_t(octant(*s)) + 1];
+    bounds.grow(s->p[0], s->p[1], s->p[2]);
+    oldest = std::min(oldest, s->stamp);
+  }
+  for (std::size_t o = 0; o < 8; ++o) begin[o + 1] += begin[o];
+  std::array<std::uint32_t, 8> at{};
+  std::copy(begin.begin(), begin.end() - 1, at.begin());
+  for (const StoredPoint* s = first; s != last; ++s) temp[at[std::size_t(octant(*s))]++] = *s;
+  Node& n = nodes[id];
+  n.count += m;
+  n.bounds.merge(bounds);
+  n.oldest = std::min(n.oldest, oldest);
+  for (int o = 0; o < 8; ++o) {
+    const std::uint32_t lo = begin[std::size_t(o)], hi = begin[std::size_t(o) + 1];
+    if (lo == hi) continue;
+    const std::uint32_t ch = child_or_new(id, cell, o);
+    insert_range(ch, lattice.child(cell, o), temp + lo, temp + hi, first + lo);
+  }
+}
+
 std::uint32_t Tree::locate(const std::array<float, 3>& p, Cell& cell) {
   if (finger.leaf != kNone && nodes[finger.leaf].leaf && lattice.contains(finger.cell, p)) {
     cell = finger.cell;
@@ -153,6 +260,14 @@ void Tree::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
   }
   nodes.release(id);
   finger = {};
+}
+
+void Tree::drop(std::uint32_t id) {
+  last.pruned += nodes[id].count;
+  if (cfg.density_cap.enabled()) {
+    walk_points(id, [&](const StoredPoint& s) { forget(s); });
+  }
+  dissolve(id, nullptr);
 }
 
 bool Tree::should_collapse(std::uint32_t id) const {

@@ -2,6 +2,7 @@
 // The state behind an EgoOctree, and the structural operations the update stages share:
 // inserting a point, splitting a leaf, dissolving and collapsing subtrees, refitting bounds.
 
+#include "core/cell_counts.hpp"
 #include "core/geometry.hpp"
 #include "core/node_store.hpp"
 #include "core/point_store.hpp"
@@ -63,8 +64,13 @@ struct Tree {
 
   StartTable start;
   Finger finger;
+  CellCounts density;  // points per density-cap cell, kept while the cap is on
   std::vector<StoredPoint> moving;  // points being re-inserted by the current stage
   std::vector<StoredPoint> scratch;  // points of a leaf being split or a subtree collapsed
+  struct BatchBuffers {  // insert_batch's, kept so that no frame pays for fresh pages
+    std::vector<StoredPoint> points;
+    std::vector<std::uint32_t> slot_of, group_start, group_end;
+  } batch_buffers;
 
   // --- geometry -----------------------------------------------------------------------------
   /// The ego box around world position p, in the current anchor frame.
@@ -77,13 +83,25 @@ struct Tree {
   bool keeps(const StoredPoint& s) {
     if (!box.contains(s.p[0], s.p[1], s.p[2])) {
       ++last.pruned;
+      forget(s);
       return false;
     }
     if (s.stamp < age_cutoff()) {
       ++last.aged_out;
+      forget(s);
       return false;
     }
     return true;
+  }
+  /// The density-cap cell of stored point p, as CellCounts names it.
+  [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
+    const double r = cfg.density_cap.cell_size;
+    return CellCounts::key({world_grid_index(anchor[0], p[0], r), world_grid_index(anchor[1], p[1], r),
+                            world_grid_index(anchor[2], p[2], r)});
+  }
+  /// Takes a point that leaves the tree out of the density counts.
+  void forget(const StoredPoint& s) {
+    if (cfg.density_cap.enabled()) density.remove(density_key(s.p));
   }
   /// Points stamped before this frame are past the age limit (0 while no limit applies).
   [[nodiscard]] std::uint32_t age_cutoff() const {
@@ -95,14 +113,33 @@ struct Tree {
   /// Inserts one point (which must lie in the root cell). Bounds, counts and ages of every
   /// ancestor follow; an overfull leaf splits.
   void insert(const StoredPoint& s);
+  /// Inserts every point of `batch` (each in the root cell), reordering it: the points are
+  /// partitioned by octant top-down from the start table's depth, so each node on their way
+  /// is visited once per batch, not once per point.
+  void insert_batch(std::vector<StoredPoint>& batch);
   /// Recomputes count, bounds and oldest stamp of `id` from its points or children.
   void refit(std::uint32_t id);
   /// Releases the subtree at `id` (and the node itself); appends its points to `out` if given.
   void dissolve(std::uint32_t id, std::vector<StoredPoint>* out);
+  /// Releases the subtree at `id` whose points leave the tree (counted as pruned).
+  void drop(std::uint32_t id);
   /// Turns inner node `id` into one leaf holding all the points below it.
   void collapse(std::uint32_t id);
   /// Whether `id` (inner) holds so few points that it should be one leaf.
   [[nodiscard]] bool should_collapse(std::uint32_t id) const;
+  /// Calls f(const StoredPoint&) for every point below `id`.
+  template <class F>
+  void walk_points(std::uint32_t id, F&& f) const {
+    const Node& n = nodes[id];
+    if (n.leaf) {
+      points.for_each(n.link, n.count, f);
+      return;
+    }
+    for (int o = 0; o < 8; ++o) {
+      const std::uint32_t ch = nodes.child(id, o);
+      if (ch != kNone) walk_points(ch, f);
+    }
+  }
   /// Creates the root node for root_cell (inner in Quantised mode, an empty leaf in Exact mode).
   void make_root();
   /// Fills the start table from the current tree.
@@ -113,6 +150,13 @@ struct Tree {
  private:
   std::uint32_t locate(const std::array<float, 3>& p, Cell& cell);
   void split(std::uint32_t id, const Cell& cell);
+  /// Inserts points [first, last), all inside `cell`, into the subtree at `id`, partitioning them
+  /// into `temp` (room for as many; both ranges are overwritten); the caller adds them to the
+  /// ancestors.
+  void insert_range(std::uint32_t id, const Cell& cell, StoredPoint* first, StoredPoint* last,
+                    StoredPoint* temp);
+  /// The node at the start depth holding `cell`'s points (created on the way), or the leaf above.
+  std::uint32_t start_node(const Cell& cell, Cell& at);
   void note_created(std::uint32_t id, const Cell& cell);
   std::int64_t start_slot(const Cell& cell) const;
 };

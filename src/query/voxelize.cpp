@@ -1,4 +1,10 @@
 // Occupied voxels of a world-aligned grid.
+//
+// When the voxel side is a lattice cell side (Quantised mode, resolution = voxel_size * 2^i), a
+// node at the voxel's depth is one voxel and its points need not be looked at: the map costs a
+// visit per voxel plus the points of leaves coarser than a voxel. Distinct leaves never share a
+// voxel then, so a leaf's keys are made unique within the leaf and the map needs no global sort.
+// Any other resolution visits every point and sorts.
 
 #include "query/frames.hpp"
 #include "query/queries.hpp"
@@ -7,14 +13,87 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <sstream>
 
 namespace eco {
 namespace detail {
+namespace {
+
+/// The voxel's depth in the lattice, as `unit_shift`: a voxel is 2^unit_shift lattice units
+/// (negative: finer than the smallest cell). None when voxels do not fall on the lattice.
+std::optional<int> lattice_shift(const Tree& t, double resolution) {
+  if (t.cfg.recentring != Recentring::Quantised || !(t.cfg.voxel_size > 0.0)) return std::nullopt;
+  const int k = int(t.cfg.quantum_levels);
+  for (int shift = t.lattice.max_depth - k; shift >= -30; --shift) {
+    if (std::ldexp(t.lattice.unit, shift) == resolution) return shift;
+  }
+  return std::nullopt;
+}
+
+void require_representable(const Tree& t, double resolution) {
+  if (t.root == kNone || t.nodes[t.root].count == 0) return;
+  const Aabb& b = t.nodes[t.root].bounds;
+  double reach = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    reach = std::max({reach, std::abs(t.anchor[a] + double(b.lo[a])), std::abs(t.anchor[a] + double(b.hi[a]))});
+  }
+  if (!grid_fits(reach + 1.0, resolution)) {
+    std::ostringstream s;
+    s << "eco::EgoOctree::voxel_keys: resolution = " << resolution << " m cannot index points " << reach
+      << " m from the world origin (more than 2^50 voxels)";
+    throw std::invalid_argument(s.str());
+  }
+}
+
+class LatticeVoxels {
+ public:
+  LatticeVoxels(const Tree& t, double resolution, int shift, std::vector<VoxelKey>& out)
+      : t_(t), res_(resolution), shift_(shift), depth_(t.lattice.max_depth - shift), out_(out) {}
+
+  void collect(std::uint32_t id, const Cell& cell) {
+    const Node& n = t_.nodes[id];
+    if (n.count == 0) return;
+    if (cell.depth == depth_) {  // the node is one voxel
+      out_.push_back({cell.lo[0] >> shift_, cell.lo[1] >> shift_, cell.lo[2] >> shift_});
+      return;
+    }
+    if (n.leaf) {
+      const std::size_t base = out_.size();
+      t_.points.for_each(n.link, n.count, [&](const StoredPoint& s) {
+        const VoxelKey key{world_grid_index(t_.anchor[0], s.p[0], res_), world_grid_index(t_.anchor[1], s.p[1], res_),
+                           world_grid_index(t_.anchor[2], s.p[2], res_)};
+        if (out_.size() == base || out_.back() != key) out_.push_back(key);
+      });
+      std::sort(out_.begin() + std::ptrdiff_t(base), out_.end());
+      out_.erase(std::unique(out_.begin() + std::ptrdiff_t(base), out_.end()), out_.end());
+      return;
+    }
+    for (int o = 0; o < 8; ++o) {
+      const std::uint32_t ch = t_.nodes.child(id, o);
+      if (ch != kNone) collect(ch, t_.lattice.child(cell, o));
+    }
+  }
+
+ private:
+  const Tree& t_;
+  double res_;
+  int shift_;
+  int depth_;
+  std::vector<VoxelKey>& out_;
+};
+
+}  // namespace
 
 std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution) {
-  require_positive(resolution, "voxelize", "resolution", false);
+  require_positive(resolution, "voxel_keys", "resolution", false);
+  require_representable(t, resolution);
   std::vector<VoxelKey> keys;
   if (t.root == kNone) return keys;
+  if (const std::optional<int> shift = lattice_shift(t, resolution)) {
+    LatticeVoxels(t, resolution, *shift, keys).collect(t.root, t.root_cell);
+    return keys;
+  }
   keys.reserve(t.nodes[t.root].count);
   auto index = [&](int a, float stored) { return world_grid_index(t.anchor[a], stored, resolution); };
   walk_leaves(

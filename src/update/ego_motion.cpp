@@ -22,9 +22,12 @@ void rebase(Tree& tree, const Eigen::Vector3d& new_anchor) {
   std::vector<StoredPoint> held;
   tree.dissolve(tree.root, &held);
   tree.root = kNone;
+  tree.density.clear();  // cells are counted anew from the re-rounded points
   for (StoredPoint s : held) {
     for (int a = 0; a < 3; ++a) s.p[a] = float(double(s.p[a]) + shift[a]);
-    if (tree.keeps(s)) tree.moving.push_back(s);
+    if (!tree.keeps(s)) continue;
+    tree.moving.push_back(s);
+    if (tree.cfg.density_cap.enabled()) tree.density.add(tree.density_key(s.p));
   }
   tree.last.rebased = true;
   tree.last.rebuilt_subtrees += 1;

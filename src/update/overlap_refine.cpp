@@ -147,7 +147,7 @@ void refine_overlap(Tree& tree) {
   }
   tree.rebuild_start_table(start_depth(tree));
   tree.last.reinserted_points += tree.moving.size();
-  for (const StoredPoint& s : tree.moving) tree.insert(s);
+  tree.insert_batch(tree.moving);
   tree.moving.clear();
 }
 

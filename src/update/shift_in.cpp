@@ -14,14 +14,20 @@ Admission admission(const Tree& tree) {
 void insert_shift_in(Tree& tree, ScanView scan) {
   const std::uint32_t stamp = tree.points.keeps_stamps() ? tree.frame : 0;
   UpdateStats& stats = tree.last;
+  std::vector<StoredPoint>& batch = tree.moving;  // empty between stages
+  batch.clear();
+  const DensityCap& cap = tree.cfg.density_cap;
   admission(tree).for_each(scan, stats, [&](const std::array<float, 3>& p) {
-    if (tree.cfg.density_cap.enabled() && !density_allows(tree, p)) {
+    // in scan order: the first points to reach a full cell are the ones kept
+    if (cap.enabled() && !tree.density.add_below(tree.density_key(p), cap.max_points)) {
       ++stats.skipped_by_density;
       return;
     }
-    tree.insert({p, stamp});
-    ++stats.inserted;
+    batch.push_back({p, stamp});
   });
+  stats.inserted = batch.size();
+  tree.insert_batch(batch);
+  batch.clear();
 }
 
 }  // namespace eco::detail

@@ -13,8 +13,7 @@ class Pruner {
     if (n.count == 0) return false;
     if (n.oldest >= cutoff_ && t_.box.contains_all(n.bounds)) return false;
     if (t_.box.misses(n.bounds)) {
-      t_.last.pruned += n.count;
-      t_.dissolve(id, nullptr);
+      t_.drop(id);
       return true;
     }
     if (n.leaf) {

@@ -22,24 +22,24 @@ void prune_shift_out(Tree& tree);
 ///    no longer fit their moved octant. Ends by re-inserting any points the stages set aside.
 void refine_overlap(Tree& tree);
 
-/// 4. Shift-in (R_in): transform the scan points the insert policy admits into the world and
-///    insert them, starting at the start-table depth rather than the root.
+/// 4. Shift-in (R_in): transform the scan points the insert policy admits into the world, pass
+///    them through the density cap (in scan order) and insert them as one batch, partitioned
+///    top-down from the start-table depth rather than the root.
 void insert_shift_in(Tree& tree, ScanView scan);
 
 /// The scan points the insert policy admits this frame (after advance_ego_motion).
 struct Admission;
 Admission admission(const Tree& tree);
 
-/// Throws std::invalid_argument naming the value unless `pose` is finite and rigid and `scan`
-/// is readable. `name` names the pose argument in the message.
-void check_update_arguments(const Eigen::Isometry3d& pose, const char* name, const ScanView& scan);
+/// Throws std::invalid_argument naming the value unless `pose` is finite and rigid, `scan` is
+/// readable and the density cap's grid can index the points around `pose` (Config's). `name`
+/// names the pose argument in the message.
+void check_update_arguments(const Eigen::Isometry3d& pose, const char* name, const ScanView& scan,
+                            const Config& config);
 
 /// The precision origin for a sensor at `position`: `anchor` while the sensor is near it, else
 /// the nearest multiple of 1024 m (always that on the first frame, `first`).
 Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor,
                                      bool first);
-
-/// Whether the density cap admits one more point at stored position p.
-bool density_allows(const Tree& tree, const std::array<float, 3>& p);
 
 }  // namespace eco::detail

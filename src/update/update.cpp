@@ -41,17 +41,30 @@ void check_scan(const ScanView& scan) {
   }
 }
 
+/// Density cells are named by 64-bit grid indices: refuse a pose so far out that they overflow.
+void check_density_grid(const Eigen::Isometry3d& pose, const Config& config) {
+  if (!config.density_cap.enabled()) return;
+  const double reach = pose.translation().cwiseAbs().maxCoeff() + config.box_side;
+  if (!detail::grid_fits(reach, config.density_cap.cell_size)) {
+    std::ostringstream s;
+    s << "eco::EgoOctree: density_cap.cell_size = " << config.density_cap.cell_size
+      << " m cannot index points " << reach << " m from the world origin (more than 2^50 cells)";
+    throw std::invalid_argument(s.str());
+  }
+}
+
 }  // namespace
 
 void detail::check_update_arguments(const Eigen::Isometry3d& pose, const char* name,
-                                    const ScanView& scan) {
+                                    const ScanView& scan, const Config& config) {
   check_pose(pose, name);
   check_scan(scan);
+  check_density_grid(pose, config);
 }
 
 const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan);
   detail::Tree& tree = *tree_;
+  detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, tree.cfg);
   tree.last = UpdateStats{};
   tree.last.scan_points = scan.count;
 

@@ -18,6 +18,11 @@ inline std::vector<Eigen::Vector3d> sorted(std::vector<Eigen::Vector3d> v) {
   return v;
 }
 
+inline std::vector<VoxelKey> sorted_keys(std::vector<VoxelKey> keys) {
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
 /// Query points: some held points (exact hits), some random in and around the box.
 template <class Tree>
 std::vector<Eigen::Vector3d> query_points(const Tree& tree, std::mt19937& rng, int n) {
@@ -77,8 +82,12 @@ void expect_same_world_answers(const Tree& tree, const Oracle& oracle, std::mt19
     const Eigen::Vector3d hi = corners[j].cwiseMax(corners[j + 1]);
     ASSERT_EQ(sorted(tree.box(lo, hi)), oracle.box(lo, hi)) << "box query";
   }
-  for (double res : {0.5, 1.3}) {
-    ASSERT_EQ(tree.voxel_keys(res), oracle.voxel_keys(res)) << "voxel keys at " << res;
+  // 0.1, 0.2 and 0.8 fall on the default lattice (Config::voxel_size = 0.1): the node walk;
+  // 0.5 and 1.3 do not: the point walk
+  for (double res : {0.1, 0.2, 0.8, 0.5, 1.3}) {
+    const std::vector<VoxelKey> keys = tree.voxel_keys(res);
+    ASSERT_EQ(sorted_keys(keys), oracle.voxel_keys(res)) << "voxel keys at " << res;
+    ASSERT_EQ(keys.size(), oracle.voxel_keys(res).size()) << "repeated voxel keys at " << res;
   }
 }
 

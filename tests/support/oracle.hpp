@@ -154,8 +154,12 @@ class Oracle {
     for (const Held& h : held_) d.push_back(sq_dist(query, h.p));
     return d;
   }
+  /// The contract's grid cell: the i with i*res - origin <= f < (i+1)*res - origin, walls in
+  /// double (floor((origin + f) / res) up to its rounding).
   [[nodiscard]] std::int64_t index(int a, float f, double res) const {
-    return std::int64_t(std::floor((origin_[a] + double(f)) / res));
+    std::int64_t i = std::int64_t(std::floor((origin_[a] + double(f)) / res)) - 2;
+    while (double(f) >= double(i + 1) * res - origin_[a]) ++i;
+    return i;
   }
   [[nodiscard]] std::uint32_t density_count(const std::array<float, 3>& f) const {
     const double r = cfg_.density_cap.cell_size;

@@ -168,7 +168,9 @@ TEST(Workloads, FromASimulatedSequenceIntoEco) {
 
   const auto map = std::make_shared<const StaticMap>(StaticMap::aggregate(dynamic, 0.1));
   const StaticWorkload stat(map, dynamic.sequence().poses());
-  EgoOctree tree;  // ShiftInOnly: the policy for a static map, whose frames repeat what is held
+  Config cfg;
+  cfg.insert_policy = InsertPolicy::ShiftInOnly;  // a static map's frames repeat what is held
+  EgoOctree tree(cfg);
   for (std::size_t f = 0; f < stat.size(); ++f) {
     const WorkloadFrame frame = stat.frame(f);
     tree.update(frame.world_T_sensor, frame.points);

@@ -1,0 +1,138 @@
+#pragma once
+// Points per world-grid cell, kept as points come and go, so that the density cap's question
+// "how many points does this cell hold?" is one hash lookup instead of a walk of the tree.
+//
+// Every held point lies in the ego box, whose side spans fewer than 2^18 cells (Config::validate
+// checks it), so a cell is named without ambiguity by its grid indices modulo 2^18: three 18-bit
+// fields. A slot is one 64-bit word — the cell's key in the high 54 bits, its count in the low 10
+// (so at most 1023 points per cell) — in an open-addressing table with linear probing and
+// backward-shift deletion (no tombstones).
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <vector>
+
+namespace eco::detail {
+
+class CellCounts {
+ public:
+  static constexpr int kAxisBits = 18;
+  static constexpr std::uint32_t kMaxCount = (1u << 10) - 1;
+
+  /// The key of the cell with grid indices g (wrapped modulo 2^18 per axis).
+  [[nodiscard]] static std::uint64_t key(const std::array<std::int64_t, 3>& g) {
+    constexpr std::uint64_t mask = (std::uint64_t{1} << kAxisBits) - 1;
+    return (std::uint64_t(g[0]) & mask) | (std::uint64_t(g[1]) & mask) << kAxisBits |
+           (std::uint64_t(g[2]) & mask) << (2 * kAxisBits);
+  }
+
+  /// Counts one more point in `key`'s cell if it holds fewer than `limit`; says whether it did.
+  bool add_below(std::uint64_t key, std::uint32_t limit) {
+    if (finger_ < slots_.size() && key_of(slots_[finger_]) == key) {  // the last cell asked
+      if (count_of(slots_[finger_]) >= limit) return false;
+      ++slots_[finger_];
+      return true;
+    }
+    if (4 * (used_ + 1) > 3 * slots_.size()) grow();
+    std::size_t i = home(key);
+    while (count_of(slots_[i]) != 0 && key_of(slots_[i]) != key) i = next(i);
+    finger_ = i;
+    if (count_of(slots_[i]) == 0) {
+      if (limit == 0) return false;
+      slots_[i] = key << kCountBits | 1u;
+      ++used_;
+      return true;
+    }
+    if (count_of(slots_[i]) >= limit) return false;
+    ++slots_[i];
+    return true;
+  }
+
+  /// Counts one point in `key`'s cell, whatever it holds already.
+  void add(std::uint64_t key) { add_below(key, kMaxCount); }
+
+  /// Forgets one point of `key`'s cell; nothing happens if the cell holds none.
+  void remove(std::uint64_t key) {
+    if (slots_.empty()) return;
+    std::size_t i = home(key);
+    while (count_of(slots_[i]) != 0 && key_of(slots_[i]) != key) i = next(i);
+    if (count_of(slots_[i]) == 0) return;
+    if (--slots_[i] & kCountMask) return;
+    erase_at(i);
+  }
+
+  /// Points counted in `key`'s cell.
+  [[nodiscard]] std::uint32_t count(std::uint64_t key) const {
+    if (slots_.empty()) return 0;
+    for (std::size_t i = home(key); count_of(slots_[i]) != 0; i = next(i)) {
+      if (key_of(slots_[i]) == key) return count_of(slots_[i]);
+    }
+    return 0;
+  }
+
+  void clear() {
+    std::fill(slots_.begin(), slots_.end(), 0);
+    used_ = 0;
+    finger_ = kNoSlot;
+  }
+
+  /// Calls f(key, count) for every cell holding a point.
+  template <class F>
+  void for_each(F&& f) const {
+    for (std::uint64_t s : slots_) {
+      if (count_of(s) != 0) f(key_of(s), count_of(s));
+    }
+  }
+
+  [[nodiscard]] std::size_t cells() const { return used_; }
+  [[nodiscard]] std::size_t bytes() const { return slots_.capacity() * sizeof(std::uint64_t); }
+
+ private:
+  static constexpr int kCountBits = 10;
+  static constexpr std::uint64_t kCountMask = (std::uint64_t{1} << kCountBits) - 1;
+  static constexpr std::size_t kNoSlot = ~std::size_t{0};
+
+  static std::uint64_t key_of(std::uint64_t slot) { return slot >> kCountBits; }
+  static std::uint32_t count_of(std::uint64_t slot) { return std::uint32_t(slot & kCountMask); }
+  [[nodiscard]] std::size_t home(std::uint64_t key) const {
+    return std::size_t((key * 0x9E3779B97F4A7C15ull) >> shift_);  // Fibonacci hashing
+  }
+  [[nodiscard]] std::size_t next(std::size_t i) const { return (i + 1) & (slots_.size() - 1); }
+
+  void grow() {
+    std::vector<std::uint64_t> old(slots_.empty() ? 1024 : 2 * slots_.size(), 0);
+    old.swap(slots_);  // slots_ is the bigger, empty table now
+    shift_ = 64 - std::countr_zero(slots_.size());
+    finger_ = kNoSlot;
+    for (std::uint64_t s : old) {
+      if (count_of(s) == 0) continue;
+      std::size_t i = home(key_of(s));
+      while (count_of(slots_[i]) != 0) i = next(i);
+      slots_[i] = s;
+    }
+  }
+
+  /// Empties slot `hole` and moves later members of its probe run back so no lookup breaks.
+  void erase_at(std::size_t hole) {
+    slots_[hole] = 0;
+    --used_;
+    finger_ = kNoSlot;
+    for (std::size_t i = next(hole); count_of(slots_[i]) != 0; i = next(i)) {
+      const std::size_t want = home(key_of(slots_[i]));
+      // slot i may move to the hole when its home is not in the cyclic range (hole, i]
+      const bool stays = hole <= i ? (hole < want && want <= i) : (hole < want || want <= i);
+      if (stays) continue;
+      slots_[hole] = slots_[i];
+      slots_[i] = 0;
+      hole = i;
+    }
+  }
+
+  std::vector<std::uint64_t> slots_;
+  std::size_t used_ = 0;
+  int shift_ = 64;
+  std::size_t finger_ = kNoSlot;
+};
+
+}  // namespace eco::detail
