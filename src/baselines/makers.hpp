@@ -10,5 +10,7 @@ std::unique_ptr<Method> make_octree_base(const Config& config);
 std::unique_ptr<Method> make_ioctree_global(const Config& config);
 std::unique_ptr<Method> make_ioctree_target(const Config& config);
 std::unique_ptr<Method> make_nanoflann(const Config& config);
+std::unique_ptr<Method> make_pcl_octree(const Config& config);
+std::unique_ptr<Method> make_scan_pass(const Config& config);
 
 }  // namespace eco::baselines

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,8 @@ enum class WorkloadKind { Static, Dynamic };
 struct BenchOptions {
   std::optional<std::filesystem::path> data;  ///< KITTI-layout folder; none: the simulator's default drive
   WorkloadKind workload = WorkloadKind::Static;
-  std::vector<std::string> methods{"eco", "eco_exact", "octree_base", "ioctree_global", "ioctree_target",
-                                   "nanoflann"};
+  std::vector<std::string> methods{"eco",       "eco_exact",  "octree_base", "ioctree_global", "ioctree_target",
+                                   "nanoflann", "pcl_octree", "scan_pass"};
   std::size_t frames = 0;              ///< frames to run; 0 = the whole sequence
   std::filesystem::path out = "results";
   Config config = paper_config();      ///< given to every method
@@ -38,6 +39,32 @@ struct BenchOptions {
     return c;
   }
 };
+
+/// Named settings of the benchmark. `paper`: Table II (ShiftInOnly, N_max = 8, the default).
+/// The robot's case — raw scans, every point in the box kept, the library's N_max = 32:
+/// `robot` (no cap), `robot-cap-0.2` (1 point per 0.2 m cell, voxel map at 0.2 m: how LiDAR
+/// odometry keeps its map), `robot-cap-0.1` (2 points per 0.1 m cell, voxel map at 0.1 m: eco run's
+/// default). Throws std::invalid_argument for another name.
+inline void apply_preset(const std::string& name, BenchOptions& o) {
+  if (name == "paper") {
+    o.config = BenchOptions::paper_config();
+    return;
+  }
+  Config c;  // the library's defaults: AllInBox, N_max = 32
+  o.workload = WorkloadKind::Dynamic;
+  if (name == "robot") {
+    o.voxel_resolution = 0.1;
+  } else if (name == "robot-cap-0.2") {
+    c.density_cap = {0.2, 1};
+    o.voxel_resolution = 0.2;
+  } else if (name == "robot-cap-0.1") {
+    c.density_cap = {0.1, 2};
+    o.voxel_resolution = 0.1;
+  } else {
+    throw std::invalid_argument("unknown preset '" + name + "' (known: paper, robot, robot-cap-0.2, robot-cap-0.1)");
+  }
+  o.config = c;
+}
 
 [[nodiscard]] inline std::string to_string(WorkloadKind kind) {
   return kind == WorkloadKind::Static ? "static" : "dynamic";

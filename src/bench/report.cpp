@@ -131,20 +131,33 @@ std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>
   for (const MethodSummary& m : summaries) {
     s << ' ' << fixed(m.update_ms, 2) << " | " << fixed(m.voxel_ms, 2) << " | " << fixed(m.knn_ms, 2) << " |";
   }
-  s << "\n\n| method | update ms | p99 ms | voxel ms | KNN ms | held points | nodes | leaf depth first → last | "
-       "max depth | bytes/point | peak MB | Chamfer m | update / eco | KNN / eco |\n"
-    << "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+  const MethodSummary* pass = find(summaries, "scan_pass");
+  auto ratio = [](const MethodSummary* a, double MethodSummary::*field, const MethodSummary* b) {
+    return a && b ? fixed(a->*field / b->*field, 2) + "×" : std::string("–");
+  };
+  s << "\n\n| method | first update ms | update ms | p99 ms | p99 / mean | voxel ms | KNN ms | held points | nodes | "
+       "leaf depth first → last | max depth | bytes/point | peak MB | Chamfer m | update / scan_pass | "
+       "update / eco | voxel / eco | KNN / eco |\n"
+    << "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const MethodSummary& m : summaries) {
     const bool octree = m.nodes > 0;
-    s << "| " << m.name << " | " << fixed(m.first_update_ms, 1) << " | " << fixed(m.update_ms, 3) << " | " << fixed(m.update_ms_p99, 3) << " | "
-      << fixed(m.voxel_ms, 3) << " | " << fixed(m.knn_ms, 3) << " | " << fixed(m.points, 0) << " | "
-      << (octree ? fixed(m.nodes, 0) : "–") << " | "
-      << (octree ? fixed(m.first_depth, 2) + " → " + fixed(m.last_depth, 2) : "–") << " | "
+    s << "| " << m.name << " | " << fixed(m.first_update_ms, 1) << " | " << fixed(m.update_ms, 3) << " | "
+      << fixed(m.update_ms_p99, 3) << " | " << fixed(m.update_ms_p99 / m.update_ms, 2) << " | " << fixed(m.voxel_ms, 3)
+      << " | " << fixed(m.knn_ms, 3) << " | " << fixed(m.points, 0) << " | " << (octree ? fixed(m.nodes, 0) : "–")
+      << " | " << (octree ? fixed(m.first_depth, 2) + " → " + fixed(m.last_depth, 2) : "–") << " | "
       << (octree ? std::to_string(m.max_depth) : "–") << " | " << fixed(m.bytes_per_point, 1) << " | "
       << fixed(double(m.bytes) / 1e6, 1) << " | " << fixed(m.chamfer_m, 4) << " | "
-      << (eco ? fixed(m.update_ms / eco->update_ms, 2) + "×" : "–") << " | "
-      << (eco ? fixed(m.knn_ms / eco->knn_ms, 2) + "×" : "–") << " |\n";
+      << ratio(&m, &MethodSummary::update_ms, pass) << " | " << ratio(&m, &MethodSummary::update_ms, eco) << " | "
+      << ratio(&m, &MethodSummary::voxel_ms, eco) << " | " << ratio(&m, &MethodSummary::knn_ms, eco) << " |\n";
   }
+  const MethodSummary* pcl = find(summaries, "pcl_octree");
+  const MethodSummary* kd = find(summaries, "nanoflann");
+  s << "\nThe robot's figures (DESIGN.md §5): eco update / scan_pass "
+    << ratio(eco, &MethodSummary::update_ms, pass) << ", pcl_octree update / eco "
+    << ratio(pcl, &MethodSummary::update_ms, eco) << ", nanoflann update / eco "
+    << ratio(kd, &MethodSummary::update_ms, eco) << ", eco voxel map / pcl_octree "
+    << ratio(eco, &MethodSummary::voxel_ms, pcl) << ", eco KNN / nanoflann " << ratio(eco, &MethodSummary::knn_ms, kd)
+    << ", eco update p99 / mean " << (eco ? fixed(eco->update_ms_p99 / eco->update_ms, 2) + "×" : "–") << ".\n";
   return s.str();
 }
 

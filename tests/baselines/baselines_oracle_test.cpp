@@ -91,6 +91,24 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::Values(Motion::Smooth, Motion::Still, Motion::Teleport)),
     capped_name);
 
+/// The flat baselines honour the density cap as the octrees do (a set of occupied cells kept as
+/// points come and go) but have no age limit.
+class FlatCapped : public ::testing::TestWithParam<CappedParams> {};
+
+TEST_P(FlatCapped, DensityCapAsTheContractSays) {
+  const auto [name, policy, motion] = GetParam();
+  Config cfg;
+  cfg.insert_policy = policy;
+  cfg.density_cap = {0.5, 2};
+  stream_and_compare(name, cfg, Stream(motion, Cloud::Duplicates, cfg.box_side, 99u), 16);
+}
+
+INSTANTIATE_TEST_SUITE_P(FlatMethods, FlatCapped,
+                         ::testing::Combine(::testing::Values("nanoflann", "pcl_octree"),
+                                            ::testing::Values(InsertPolicy::ShiftInOnly, InsertPolicy::AllInBox),
+                                            ::testing::Values(Motion::Smooth, Motion::Still, Motion::Teleport)),
+                         capped_name);
+
 TEST(Baselines, UnknownNameAndUnsupportedConfigAreRejectedByName) {
   try {
     (void)make_method("kdtree", Config{});
@@ -99,9 +117,16 @@ TEST(Baselines, UnknownNameAndUnsupportedConfigAreRejectedByName) {
     EXPECT_NE(std::string(e.what()).find("'kdtree'"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("octree_base"), std::string::npos) << e.what();
   }
-  Config capped;
-  capped.density_cap = {0.1, 3};
-  EXPECT_THROW((void)make_method("nanoflann", capped), std::invalid_argument);
+  Config aged;
+  aged.max_age_frames = 3;
+  for (const char* flat : {"nanoflann", "pcl_octree", "scan_pass"}) {
+    try {
+      (void)make_method(flat, aged);
+      FAIL() << flat << ": no exception";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("max_age_frames = 3"), std::string::npos) << e.what();
+    }
+  }
   Config bad;
   bad.box_side = -1.0;
   for (const std::string& name : baselines::method_names()) {

@@ -19,6 +19,7 @@ namespace eco::cli {
 Run add_bench(CLI::App& app, const std::string& command_line) {
   auto o = std::make_shared<bench::BenchOptions>();
   auto data = std::make_shared<std::string>();
+  auto preset = std::make_shared<std::string>("paper");
   CLI::App* cmd = app.add_subcommand("bench", "Compare ECO with its baselines on one stream (the paper's Table II)");
   cmd->add_option("--data", *data, "KITTI-layout folder (velodyne/, poses.txt[, calib.txt]); default: simulate")
       ->check(CLI::ExistingDirectory);
@@ -42,16 +43,40 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--seed", o->seed, "query seed, and the simulator's without --data")->capture_default_str();
   cmd->add_option("--sim-frames", o->sim_frames, "length of the simulated drive without --data")->capture_default_str();
   cmd->add_flag("--check", o->check_every_frame, "check every method's invariants after every frame (slow)");
+  cmd->add_option("--preset", *preset,
+                  "paper (Table II: ShiftInOnly, N_max 8), robot (raw scans: AllInBox, N_max 32, dynamic), "
+                  "robot-cap-0.2 (+ 1 point per 0.2 m cell, voxel 0.2), robot-cap-0.1 (+ 2 per 0.1 m, voxel 0.1); "
+                  "options given explicitly override it")
+      ->check(CLI::IsMember({"paper", "robot", "robot-cap-0.2", "robot-cap-0.1"}))
+      ->capture_default_str();
   add_config_options(*cmd, o->config);
   cmd->footer(
-      "Defaults are the paper's: L = 20 m, N_max = 8, ShiftInOnly. All methods see the same frames, one\n"
+      "Defaults are the paper's (--preset paper): L = 20 m, N_max = 8, ShiftInOnly. All methods see the same frames, one\n"
       "frame at a time, on one core. The results folder gets config.json, <method>.csv, summary.md,\n"
       "summary.json and update_ms.svg.\n"
       "Examples:\n"
       "  eco bench --workload static --frames 100 --out results/static\n"
       "  eco bench --data ../shared/data/kitti_mini_00 --workload dynamic --out results/kitti00-dynamic\n"
-      "  eco bench --workload dynamic --methods eco,nanoflann --knn-queries 5000 --k 10");
-  return [o, data, command_line] {
+      "  eco bench --workload dynamic --methods eco,nanoflann --knn-queries 5000 --k 10\n"
+      "  eco bench --data ../shared/data/kitti_mini_08 --preset robot-cap-0.2 --out results/kitti08-robot-cap");
+  return [o, data, preset, cmd, command_line] {
+    // the preset first; every option given on the command line then overrides it
+    const bench::BenchOptions given = *o;
+    bench::apply_preset(*preset, *o);
+    auto keep = [&](const char* flag, auto& field, const auto& value) {
+      if (cmd->count(flag) > 0) field = value;
+    };
+    Config& c = o->config;
+    keep("--workload", o->workload, given.workload);
+    keep("--voxel", o->voxel_resolution, given.voxel_resolution);
+    keep("--box-side", c.box_side, given.config.box_side);
+    keep("--leaf-capacity", c.leaf_capacity, given.config.leaf_capacity);
+    keep("--min-cell", c.min_cell_size, given.config.min_cell_size);
+    keep("--quantum-levels", c.quantum_levels, given.config.quantum_levels);
+    keep("--policy", c.insert_policy, given.config.insert_policy);
+    keep("--density-cell", c.density_cap.cell_size, given.config.density_cap.cell_size);
+    keep("--density-max", c.density_cap.max_points, given.config.density_cap.max_points);
+    keep("--max-age", c.max_age_frames, given.config.max_age_frames);
     if (!data->empty()) o->data = *data;
     bench::pin_to_one_core();
     const bench::BenchRun run = bench::run_bench(*o, bench::terminal_progress());

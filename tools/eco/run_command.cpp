@@ -29,9 +29,8 @@ struct RunOptions {
   std::uint64_t seed = 1;
   Config config = raw_scan_config();
 
-  static Config raw_scan_config() {  // raw scans: every point in the box, at most 2 per 10 cm cell
+  static Config raw_scan_config() {  // raw scans (the library default): at most 2 per 10 cm cell
     Config c;
-    c.insert_policy = InsertPolicy::AllInBox;
     c.density_cap = {0.1, 2};
     return c;
   }

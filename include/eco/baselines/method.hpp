@@ -7,10 +7,12 @@
 /// |------------------|-------------------------------------------------------------------------|
 /// | `eco`            | EgoOctree, quantised re-centring (ours)                                 |
 /// | `eco_exact`      | EgoOctree, exact re-centring (the paper's algorithm)                    |
-/// | `octree_base`    | full rebuild from the points in the current box, every frame            |
+/// | `octree_base`    | bulk rebuild (top-down partition) from the points in the box, every frame |
 /// | `ioctree_global` | global-rooted incremental octree (i-Octree): grows its root, never deletes |
 /// | `ioctree_target` | the same, bounded: deletes what left the box, inserts what ECO inserts  |
 /// | `nanoflann`      | a nanoflann k-d tree over the points in the box, rebuilt every frame    |
+/// | `pcl_octree`     | PCL 1.13's OctreePointCloudSearch, kept incrementally (voxel leaves)    |
+/// | `scan_pass`      | transform, box test and copy of the scan, no structure: the update's floor |
 ///
 /// All hold points the way ECO does (float offsets from a precision origin) and take in the same
 /// scan points (the Config's insert policy), so their held sets are equal — except
@@ -36,6 +38,8 @@ class Method {
   virtual ~Method() = default;
 
   [[nodiscard]] virtual std::string name() const = 0;
+  /// False when queries scan every held point (scan_pass): the benchmark does not time them.
+  [[nodiscard]] virtual bool indexed() const { return true; }
   /// Advances to `world_T_sensor` and takes in `scan` (sensor frame), as EgoOctree::update.
   /// Throws std::invalid_argument for a pose that is not finite or not rigid.
   virtual void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) = 0;
@@ -69,7 +73,8 @@ class Method {
 
 /// The method called `name` with `config` (L, N_max, insert policy, ...). Throws
 /// std::invalid_argument for an unknown name (listing the known ones) or a configuration the
-/// method cannot honour (`nanoflann` has no density cap or age limit).
+/// method cannot honour (`nanoflann` and `pcl_octree` have no age limit; `scan_pass` has none and
+/// ignores the density cap).
 [[nodiscard]] std::unique_ptr<Method> make_method(std::string_view name, const Config& config);
 
 }  // namespace eco::baselines

@@ -1,0 +1,116 @@
+#pragma once
+// What the baselines that keep no detail::Tree (scan_pass, nanoflann, pcl_octree) share with ECO,
+// so that they take in exactly ECO's points: the pose, the precision origin and the ego box,
+// the admission of scan points, and the density cap's cell counts.
+
+#include "core/cell_counts.hpp"
+#include "core/tree.hpp"
+#include "update/admission.hpp"
+#include "update/stages.hpp"
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace eco::baselines {
+
+class FlatFrame {
+ public:
+  /// Throws std::invalid_argument for a bad configuration or an age limit (`who` has none).
+  FlatFrame(const Config& config, const std::string& who) : cfg_(config) {
+    cfg_.validate();
+    if (cfg_.max_age_frames > 0) {
+      throw std::invalid_argument("the " + who + " baseline has no age limit (max_age_frames = " +
+                                  std::to_string(cfg_.max_age_frames) + ")");
+    }
+  }
+
+  /// Checks the arguments, then moves to `pose`. Returns how far held points must move
+  /// (old origin - new origin) when the precision origin moved, and the scan's admission.
+  struct Step {
+    std::optional<Eigen::Vector3d> shift;
+    detail::Admission admission;
+  };
+  Step advance(const Eigen::Isometry3d& world_T_sensor, const ScanView& scan) {
+    detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, cfg_);
+    const Eigen::Vector3d position = world_T_sensor.translation();
+    const Eigen::Vector3d anchor = detail::precision_origin_for(position, anchor_, frames_ == 0);
+    Step step{std::nullopt, {world_T_sensor, anchor, detail::ego_box(position, anchor, cfg_.box_side), std::nullopt}};
+    if (anchor != anchor_ && frames_ > 0) step.shift = anchor_ - anchor;
+    if (cfg_.insert_policy == InsertPolicy::ShiftInOnly && frames_ > 0) {
+      step.admission.previous = detail::ego_box(pose_.translation(), anchor, cfg_.box_side);
+    }
+    anchor_ = anchor;
+    pose_ = world_T_sensor;
+    ++frames_;
+    if (step.shift) density_.clear();  // the caller counts the re-expressed points anew
+    return step;
+  }
+
+  /// The density cap's verdict on a new point (counted when admitted); true while the cap is off.
+  bool admits(const std::array<float, 3>& p) {
+    return !cfg_.density_cap.enabled() || density_.add_below(key(p), cfg_.density_cap.max_points);
+  }
+  /// Counts a held point (after the origin moved) or forgets one that left.
+  void count(const std::array<float, 3>& p) {
+    if (cfg_.density_cap.enabled()) density_.add(key(p));
+  }
+  void forget(const std::array<float, 3>& p) {
+    if (cfg_.density_cap.enabled()) density_.remove(key(p));
+  }
+
+  [[nodiscard]] detail::Box box() const { return detail::ego_box(pose_.translation(), anchor_, cfg_.box_side); }
+  [[nodiscard]] std::array<double, 3> local(const Eigen::Vector3d& w) const {
+    return {w[0] - anchor_[0], w[1] - anchor_[1], w[2] - anchor_[2]};
+  }
+  [[nodiscard]] Eigen::Vector3d world(const std::array<float, 3>& p) const {
+    return {anchor_[0] + double(p[0]), anchor_[1] + double(p[1]), anchor_[2] + double(p[2])};
+  }
+  [[nodiscard]] VoxelKey voxel(const std::array<float, 3>& p, double res) const {
+    return {detail::world_grid_index(anchor_[0], p[0], res), detail::world_grid_index(anchor_[1], p[1], res),
+            detail::world_grid_index(anchor_[2], p[2], res)};
+  }
+
+  /// Throws std::invalid_argument naming `resolution` unless voxels of that side can be indexed.
+  void require_voxel_resolution(double res) const {
+    // held points lie within 2048 m + L of the precision origin
+    const double reach = anchor_.cwiseAbs().maxCoeff() + 2048.0 + 2 * cfg_.box_side;
+    if (!(res > 0.0) || !detail::grid_fits(reach, res)) {
+      throw std::invalid_argument("voxel_keys: resolution = " + std::to_string(res) +
+                                  " m must be > 0 and index points " + std::to_string(reach) +
+                                  " m from the world origin in fewer than 2^50 voxels");
+    }
+  }
+
+  [[nodiscard]] const Config& config() const { return cfg_; }
+  [[nodiscard]] const Eigen::Isometry3d& pose() const { return pose_; }
+  [[nodiscard]] const Eigen::Vector3d& anchor() const { return anchor_; }
+  [[nodiscard]] std::size_t frames() const { return frames_; }
+  [[nodiscard]] std::size_t bytes() const { return sizeof(*this) + density_.bytes(); }
+
+ private:
+  [[nodiscard]] std::uint64_t key(const std::array<float, 3>& p) const {
+    const VoxelKey v = voxel(p, cfg_.density_cap.cell_size);
+    return detail::CellCounts::key({v.x, v.y, v.z});
+  }
+
+  Config cfg_;
+  Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d anchor_ = Eigen::Vector3d::Zero();
+  std::size_t frames_ = 0;
+  detail::CellCounts density_;
+};
+
+/// Sorted unique voxel keys of points `held` (anchor frame) at `res`: the brute-force voxel map.
+template <class Points>
+std::vector<VoxelKey> voxel_keys_of_points(const FlatFrame& frame, const Points& held, double res) {
+  frame.require_voxel_resolution(res);
+  std::vector<VoxelKey> keys;
+  keys.reserve(held.size());
+  for (const auto& p : held) keys.push_back(frame.voxel({p[0], p[1], p[2]}, res));
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  return keys;
+}
+
+}  // namespace eco::baselines
