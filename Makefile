@@ -5,7 +5,7 @@ ASAN_BUILD ?= build-asan
 FUZZ_BUILD ?= build-fuzz
 JOBS       ?= $(shell nproc)
 DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev libeigen3-dev libgtest-dev liblzf-dev \
-                   libnanoflann-dev libcli11-dev nlohmann-json3-dev \
+                   libnanoflann-dev libcli11-dev nlohmann-json3-dev libpcl-dev \
                    pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest \
                    python3-matplotlib python3-pip python3-venv python3-setuptools python3-wheel
 ## Debian's own interpreter, whatever else is first on PATH (pyenv, conda).

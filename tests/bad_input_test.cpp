@@ -51,6 +51,17 @@ TEST(BadConfig, EachInvalidFieldIsRejectedByName) {
       {"density_cap.cell_size", "0"});
   expect_rejected([&] { EgoOctree t(with([](Config& c) { c.recentring = Recentring(7); })); },
                   {"recentring", "7"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.voxel_size = -0.1; })); }, {"voxel_size", "-0.1"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.voxel_size = kNaN; })); }, {"voxel_size", "nan"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.voxel_size = 25.0; })); }, {"voxel_size", "25"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.density_cap = {kNaN, 2}; })); },
+                  {"density_cap.cell_size", "nan"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.density_cap = {30.0, 2}; })); },
+                  {"density_cap.cell_size", "30", "box_side"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.density_cap = {1e-5, 2}; })); },
+                  {"density_cap.cell_size", "1e-05"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.density_cap = {0.1, 5000}; })); },
+                  {"density_cap.max_points", "5000"});
   // Exact mode has no quantum: a coarse min cell is fine there.
   EXPECT_NO_THROW(EgoOctree(with([](Config& c) {
     c.recentring = Recentring::Exact;
@@ -151,6 +162,33 @@ TEST_F(BadCalls, NonFinitePointsAreSkippedAndCounted) {
   EXPECT_EQ(st.inserted, 2u);
   std::mt19937 rng(2);
   expect_same_answers(tree_, oracle_, rng, "after NaN points");
+}
+
+/// Grid indices are 64-bit: a voxel or density cell too small for how far the points lie from the
+/// world origin is refused by name, never wrapped silently.
+TEST(GridKeys, UnrepresentableVoxelOrDensityCellIsRejected) {
+  Eigen::Isometry3d far = Eigen::Isometry3d::Identity();
+  far.translation() = Eigen::Vector3d(4e9, -3e9, 0.0);  // 4 * 10^9 m from the start
+  const std::vector<Eigen::Vector3f> scan{{1, 2, 0.5f}, {-3, 1, 0}};
+  EgoOctree tree;
+  tree.update(far, scan);
+  expect_rejected([&] { (void)tree.voxel_keys(1e-10); }, {"resolution = 1e-10"});
+  const std::vector<VoxelKey> keys = tree.voxel_keys(0.25);  // representable: exact keys
+  ASSERT_EQ(keys.size(), 2u);
+  for (const VoxelKey& k : keys) EXPECT_GT(std::abs(double(k.x) * 0.25 - 4e9), -1.0) << k.x;
+  EXPECT_EQ(sorted_keys(keys)[0].x, std::int64_t((4e9 - 3) / 0.25));
+
+  Config capped;
+  capped.density_cap = {1e-4, 1};
+  EgoOctree tight(capped);
+  const Eigen::Isometry3d near = Eigen::Isometry3d::Identity();
+  tight.update(near, scan);
+  Eigen::Isometry3d farther = far;
+  farther.translation().x() = 4e11;  // 4e15 cells of 0.1 mm from the origin: past 2^50
+  expect_rejected([&] { tight.update(farther, scan); }, {"density_cap.cell_size", "0.0001"});
+  EXPECT_EQ(tight.size(), 2u);  // unchanged
+  EXPECT_EQ(tight.frame_count(), 1u);
+  EXPECT_EQ(tight.pose().translation(), near.translation());
 }
 
 TEST(EmptyTree, QueriesAnswerNothing) {

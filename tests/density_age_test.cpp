@@ -56,6 +56,33 @@ INSTANTIATE_TEST_SUITE_P(Knobs, DensityAge,
                                             ::testing::Values(Cloud::Surfaces, Cloud::Duplicates, Cloud::Few),
                                             ::testing::Range(0, 4)));
 
+/// The cell counts follow the points through every structural change: a drive that jumps farther
+/// than the box and moves the precision origin (kilometres a frame), both re-centring modes.
+TEST(DensityCap, CountsSurviveJumpsAndPrecisionOriginMoves) {
+  for (const Recentring recentring : {Recentring::Quantised, Recentring::Exact}) {
+    Config cfg;
+    cfg.recentring = recentring;
+    cfg.density_cap = {0.4, 2};
+    cfg.max_age_frames = 6;
+    cfg.leaf_capacity = 4;
+    EgoOctree tree(cfg);
+    Oracle oracle(cfg);
+    Stream stream(Motion::Smooth, Cloud::Duplicates, cfg.box_side, 31u);
+    std::mt19937 rng(5);
+    bool rebased = false;
+    for (int t = 0; t < 30; ++t) {
+      Eigen::Isometry3d pose = stream.pose(t);
+      if (t % 10 == 9) pose.translation().x() += 1500.0 * t;  // far, then back
+      const auto scan = stream.scan(t);
+      rebased = tree.update(pose, scan).rebased || rebased;
+      oracle.update(pose, scan, tree.precision_origin());
+      expect_same_answers(tree, oracle, rng, "frame " + std::to_string(t));
+      if (HasFatalFailure()) return;
+    }
+    EXPECT_TRUE(rebased) << "the precision origin never moved";
+  }
+}
+
 TEST(AgeLimit, StationaryScansStayBounded) {
   Config cfg;
   cfg.insert_policy = InsertPolicy::AllInBox;

@@ -97,7 +97,11 @@ TEST_P(ShortRun, AllMethodsHoldTheSamePointsAndTheResultsFolderIsComplete) {
       } else {
         EXPECT_EQ(m.frames[t].points, base->frames[t].points) << "frame " << t;
       }
-      EXPECT_EQ(m.frames[t].chamfer_m, 0.0) << "frame " << t;  // same points, same voxel map
+      if (m.name == "pcl_octree") {  // PCL puts points on a voxel wall by its own rounding
+        EXPECT_LT(m.frames[t].chamfer_m, 1e-4) << "frame " << t;
+      } else {
+        EXPECT_EQ(m.frames[t].chamfer_m, 0.0) << "frame " << t;  // same points, same voxel map
+      }
     }
   }
   test::TempDir dir("eco-bench");

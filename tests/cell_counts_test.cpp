@@ -1,0 +1,54 @@
+// CellCounts, the density cap's per-cell counts, against a std::map: random adds, capped adds
+// and removals (which shift later members of a probe run back), through several growths.
+
+#include "core/cell_counts.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+namespace eco::detail {
+namespace {
+
+TEST(CellCounts, MatchesAMapThroughAddsCapsRemovalsAndGrowth) {
+  CellCounts counts;
+  std::map<std::uint64_t, std::uint32_t> expected;
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<std::int64_t> cell(-40, 40);  // few cells: long probe runs
+  for (int step = 0; step < 200000; ++step) {
+    const std::uint64_t key = CellCounts::key({cell(rng), cell(rng), cell(rng) / 8});
+    const int op = int(rng() % 4);
+    if (op == 0 && expected.count(key) > 0) {
+      counts.remove(key);
+      if (--expected[key] == 0) expected.erase(key);
+    } else {
+      const std::uint32_t limit = std::uint32_t(rng() % 4);
+      const bool added = counts.add_below(key, limit);
+      const std::uint32_t had = expected.count(key) ? expected[key] : 0;
+      ASSERT_EQ(added, had < limit) << step;
+      if (added) ++expected[key];
+    }
+    if (step % 997 == 0) {
+      ASSERT_EQ(counts.cells(), expected.size());
+      for (const auto& [k, n] : expected) ASSERT_EQ(counts.count(k), n);
+    }
+  }
+  std::size_t seen = 0;
+  counts.for_each([&](std::uint64_t k, std::uint32_t n) {
+    ++seen;
+    EXPECT_EQ(expected.at(k), n);
+  });
+  EXPECT_EQ(seen, expected.size());
+  counts.remove(CellCounts::key({1000, 1000, 1000}));  // a cell holding nothing: no effect
+  EXPECT_EQ(counts.cells(), expected.size());
+}
+
+TEST(CellCounts, KeysWrapModulo2To18PerAxis) {
+  EXPECT_EQ(CellCounts::key({-1, 0, 0}), CellCounts::key({(1 << 18) - 1, 0, 0}));
+  EXPECT_NE(CellCounts::key({1, 0, 0}), CellCounts::key({0, 1, 0}));
+  EXPECT_NE(CellCounts::key({0, 0, 1}), CellCounts::key({0, 1, 0}));
+}
+
+}  // namespace
+}  // namespace eco::detail
