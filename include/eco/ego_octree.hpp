@@ -73,10 +73,15 @@ class EgoOctree {
                                                  const Eigen::Vector3d& hi,
                                                  Frame frame = Frame::World) const;
 
-  /// Keys of the occupied voxels of the world-aligned grid of side `resolution` [m], sorted and
-  /// unique. Every key holds at least one point, so every voxel meets the ego box.
+  /// Keys of the occupied voxels of the world-aligned grid of side `resolution` [m], unique, in no
+  /// particular order (sort them if you need one). Voxel i on an axis holds the stored coordinate
+  /// f (offset from the precision origin o) with i*res - o <= f < (i+1)*res - o, walls in double.
+  /// Every key holds at least one point, so every voxel meets the ego box. With
+  /// resolution = Config::voxel_size * 2^i (Quantised mode) the map visits one node per voxel,
+  /// not every point. Throws std::invalid_argument naming `resolution` if it is not > 0 or too
+  /// small to index the held points in 64 bits.
   [[nodiscard]] std::vector<VoxelKey> voxel_keys(double resolution) const;
-  /// Centres of the same voxels, in `frame`, in key order.
+  /// Centres of the same voxels, in `frame`, in the same order.
   [[nodiscard]] std::vector<Eigen::Vector3d> voxelize(double resolution,
                                                       Frame frame = Frame::World) const;
 

@@ -272,8 +272,9 @@ such pairs. workers: as for knn().)")
             return keys_array(reading(self, [&](const EgoOctree& t) { return t.voxel_keys(res); }));
           },
           py::arg("resolution"),
-          "Integer keys (V, 3) int64 of the occupied voxels, sorted and unique: voxel i spans "
-          "[i*resolution, (i+1)*resolution) per axis.")
+          "Integer keys (V, 3) int64 of the occupied voxels, unique, in no particular order (the "
+          "tree's): voxel i spans [i*resolution, (i+1)*resolution) per axis. Fastest when "
+          "resolution is config.voxel_size * 2^i (then nodes are visited, not points).")
       .def(
           "points",
           [](const SharedTree& self) { return rows_array(read<&EgoOctree::points>()(self)); },
