@@ -98,7 +98,6 @@ void GlobalOctree::grow_once() {
   t.nodes[old_root].parent = t.root;
   t.nodes[old_root].octant = static_cast<std::uint8_t>(octant);
   t.refit(t.root);
-  t.finger = {};
 }
 
 }  // namespace eco::baselines

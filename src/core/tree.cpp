@@ -32,31 +32,8 @@ void Tree::make_root() {
 // ---------------------------------------------------------------------------------------------
 // Insertion
 
-void Tree::insert(const StoredPoint& s) {
-  Cell cell;
-  const std::uint32_t leaf = locate(s.p, cell);
-  points.push(nodes[leaf].link, nodes[leaf].count, s);
-  for (std::uint32_t id = leaf; id != kNone; id = nodes[id].parent) {
-    Node& n = nodes[id];
-    ++n.count;
-    n.bounds.grow(s.p[0], s.p[1], s.p[2]);
-    n.oldest = std::min(n.oldest, s.stamp);
-  }
-  std::uint32_t id = leaf;
-  if (nodes[leaf].count > cfg.leaf_capacity && cell.depth < lattice.max_depth) {
-    split(leaf, cell);
-    while (!nodes[id].leaf) {
-      const int o = lattice.octant(cell, s.p);
-      id = nodes.child(id, o);
-      cell = lattice.child(cell, o);
-    }
-  }
-  finger = {id, cell};
-}
-
 void Tree::insert_batch(std::vector<StoredPoint>& batch) {
   if (batch.empty()) return;
-  finger = {};
   std::vector<StoredPoint>& temp = batch_buffers.points;
   temp.resize(batch.size());
   // Group the points by their start-depth cell (a counting sort), then insert each group below
@@ -161,29 +138,6 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* first, 
   }
 }
 
-std::uint32_t Tree::locate(const std::array<float, 3>& p, Cell& cell) {
-  if (finger.leaf != kNone && nodes[finger.leaf].leaf && lattice.contains(finger.cell, p)) {
-    cell = finger.cell;
-    return finger.leaf;
-  }
-  std::uint32_t id = root;
-  cell = root_cell;
-  if (start.depth > 0) {
-    const Cell c = lattice.cell_at(start.depth, p);
-    const std::int64_t slot = start_slot(c);
-    if (slot >= 0 && start.slots[std::size_t(slot)] != kNone) {
-      id = start.slots[std::size_t(slot)];
-      cell = c;
-    }
-  }
-  while (!nodes[id].leaf) {
-    const int o = lattice.octant(cell, p);
-    id = child_or_new(id, cell, o);
-    cell = lattice.child(cell, o);
-  }
-  return id;
-}
-
 std::uint32_t Tree::child_or_new(std::uint32_t id, const Cell& cell, int octant) {
   std::uint32_t ch = nodes.child(id, octant);
   if (ch != kNone) return ch;
@@ -259,7 +213,6 @@ void Tree::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
     }
   }
   nodes.release(id);
-  finger = {};
 }
 
 void Tree::drop(std::uint32_t id) {
@@ -313,7 +266,6 @@ void Tree::rebuild_start_table(int depth) {
   start.per_axis = std::int64_t{1} << depth;
   start.slots.assign(depth == 0 ? 0 : std::size_t(start.per_axis * start.per_axis * start.per_axis),
                      kNone);
-  finger = {};
   if (depth == 0) return;
   auto walk = [&](auto&& self, std::uint32_t id, const Cell& cell) -> void {
     if (cell.depth == depth) {

@@ -1,6 +1,6 @@
 #pragma once
 // The state behind an EgoOctree, and the structural operations the update stages share:
-// inserting a point, splitting a leaf, dissolving and collapsing subtrees, refitting bounds.
+// inserting a batch of points, splitting a leaf, dissolving and collapsing subtrees, refitting bounds.
 
 #include "core/cell_counts.hpp"
 #include "core/geometry.hpp"
@@ -23,12 +23,6 @@ struct StartTable {
   int depth = 0;
   std::int64_t per_axis = 1;
   std::vector<std::uint32_t> slots;
-};
-
-/// The last leaf a point went into, with its cell: consecutive scan points usually share it.
-struct Finger {
-  std::uint32_t leaf = kNone;
-  Cell cell;
 };
 
 /// The ego box [p - L/2, p + L/2) around world position p, in the frame of precision origin
@@ -63,7 +57,6 @@ struct Tree {
   UpdateStats last;
 
   StartTable start;
-  Finger finger;
   CellCounts density;  // points per density-cap cell, kept while the cap is on
   std::vector<StoredPoint> moving;  // points being re-inserted by the current stage
   std::vector<StoredPoint> scratch;  // points of a leaf being split or a subtree collapsed
@@ -110,9 +103,6 @@ struct Tree {
   }
 
   // --- structure ----------------------------------------------------------------------------
-  /// Inserts one point (which must lie in the root cell). Bounds, counts and ages of every
-  /// ancestor follow; an overfull leaf splits.
-  void insert(const StoredPoint& s);
   /// Inserts every point of `batch` (each in the root cell), reordering it: the points are
   /// partitioned by octant top-down from the start table's depth, so each node on their way
   /// is visited once per batch, not once per point.
@@ -148,7 +138,6 @@ struct Tree {
   std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
 
  private:
-  std::uint32_t locate(const std::array<float, 3>& p, Cell& cell);
   void split(std::uint32_t id, const Cell& cell);
   /// Inserts points [first, last), all inside `cell`, into the subtree at `id`, partitioning them
   /// into `temp` (room for as many; both ranges are overwritten); the caller adds them to the
