@@ -66,6 +66,29 @@ class FlatFrame {
   [[nodiscard]] Eigen::Vector3d world(const std::array<float, 3>& p) const {
     return {anchor_[0] + double(p[0]), anchor_[1] + double(p[1]), anchor_[2] + double(p[2])};
   }
+  /// The closed query box [lo, hi] (world) in the anchor frame.
+  [[nodiscard]] detail::Box closed_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
+    detail::Box b;
+    b.half_open = false;
+    b.lo = local(lo);
+    b.hi = local(hi);
+    return b;
+  }
+  /// Held point p as a result for query q (anchor frame): world point, squared distance in double.
+  [[nodiscard]] Neighbor neighbor(const std::array<double, 3>& q, const std::array<float, 3>& p) const {
+    const double dx = double(p[0]) - q[0], dy = double(p[1]) - q[1], dz = double(p[2]) - q[2];
+    return {world(p), dx * dx + dy * dy + dz * dz};
+  }
+  /// Empty when every point of `held` lies in the current ego box, else what is wrong.
+  template <class Points>
+  [[nodiscard]] std::string outside_box(const Points& held) const {
+    if (frames_ == 0) return "";
+    const detail::Box b = box();
+    for (const auto& p : held) {
+      if (!b.contains(p[0], p[1], p[2])) return "point outside the ego box";
+    }
+    return "";
+  }
   [[nodiscard]] VoxelKey voxel(const std::array<float, 3>& p, double res) const {
     return {detail::world_grid_index(anchor_[0], p[0], res), detail::world_grid_index(anchor_[1], p[1], res),
             detail::world_grid_index(anchor_[2], p[2], res)};
@@ -100,6 +123,9 @@ class FlatFrame {
   std::size_t frames_ = 0;
   detail::CellCounts density_;
 };
+
+/// Nearest first, as every query reports neighbours.
+inline bool nearer(const Neighbor& a, const Neighbor& b) { return a.sq_dist < b.sq_dist; }
 
 /// Sorted unique voxel keys of points `held` (anchor frame) at `res`: the brute-force voxel map.
 template <class Points>

@@ -94,10 +94,7 @@ class NanoflannKdTree final : public Method {
 
   // A k-d tree has no box or voxel query of its own: a scan of the held points answers them.
   [[nodiscard]] std::vector<Eigen::Vector3d> box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const override {
-    detail::Box b;
-    b.half_open = false;
-    b.lo = frame_.local(lo);
-    b.hi = frame_.local(hi);
+    const detail::Box b = frame_.closed_box(lo, hi);
     std::vector<Eigen::Vector3d> out;
     for (const auto& p : held_.p) {
       if (b.contains(p[0], p[1], p[2])) out.push_back(frame_.world(p));
@@ -124,11 +121,8 @@ class NanoflannKdTree final : public Method {
   }
   [[nodiscard]] Eigen::Vector3d precision_origin() const override { return frame_.anchor(); }
   [[nodiscard]] std::string check_invariants() const override {
-    if (frame_.frames() == 0) return "";
-    const detail::Box b = frame_.box();
-    for (const auto& p : held_.p) {
-      if (!b.contains(p[0], p[1], p[2])) return "point outside the ego box";
-    }
+    const std::string outside = frame_.outside_box(held_.p);
+    if (!outside.empty() || frame_.frames() == 0) return outside;
     return index_ && index_->size(*index_) == held_.p.size() ? "" : "k-d tree not built over the held points";
   }
   [[nodiscard]] const Config& config() const override { return frame_.config(); }

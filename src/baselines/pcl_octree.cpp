@@ -72,8 +72,7 @@ class PclOctree final : public Method {
     const auto k = std::min<std::size_t>(out.size(), held_count_);
     octree_->nearestKSearch(pcl::PointXYZ(float(q[0]), float(q[1]), float(q[2])), int(k), indices, sq_dists);
     for (std::size_t i = 0; i < indices.size(); ++i) out[i] = neighbor(q, indices[i]);
-    std::sort(out.begin(), out.begin() + std::ptrdiff_t(indices.size()),
-              [](const Neighbor& a, const Neighbor& b) { return a.sq_dist < b.sq_dist; });
+    std::sort(out.begin(), out.begin() + std::ptrdiff_t(indices.size()), nearer);
     return indices.size();
   }
   using Method::knn;
@@ -91,15 +90,12 @@ class PclOctree final : public Method {
       const Neighbor n = neighbor(q, i);
       if (n.sq_dist <= r * r) out.push_back(n);
     }
-    std::sort(out.begin(), out.end(), [](const Neighbor& a, const Neighbor& b) { return a.sq_dist < b.sq_dist; });
+    std::sort(out.begin(), out.end(), nearer);
     return out;
   }
 
   [[nodiscard]] std::vector<Eigen::Vector3d> box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const override {
-    detail::Box b;
-    b.half_open = false;
-    b.lo = frame_.local(lo);
-    b.hi = frame_.local(hi);
+    const detail::Box b = frame_.closed_box(lo, hi);
     std::vector<Eigen::Vector3d> out;
     if (held_count_ == 0) return out;
     for (const pcl::index_t i : search_box(b)) {
@@ -140,14 +136,10 @@ class PclOctree final : public Method {
   }
   [[nodiscard]] Eigen::Vector3d precision_origin() const override { return frame_.anchor(); }
   [[nodiscard]] std::string check_invariants() const override {
-    if (frame_.frames() == 0) return "";
-    const detail::Box b = frame_.box();
-    std::size_t n = 0;
-    for (const auto& p : held()) {
-      if (!b.contains(p[0], p[1], p[2])) return "point outside the ego box";
-      ++n;
-    }
-    return n == held_count_ ? "" : "held count differs from the live points";
+    const std::vector<std::array<float, 3>> live = held();
+    const std::string outside = frame_.outside_box(live);
+    if (!outside.empty()) return outside;
+    return live.size() == held_count_ ? "" : "held count differs from the live points";
   }
   [[nodiscard]] const Config& config() const override { return frame_.config(); }
   [[nodiscard]] const Eigen::Isometry3d& pose() const override { return frame_.pose(); }
@@ -230,8 +222,7 @@ class PclOctree final : public Method {
 
   [[nodiscard]] Neighbor neighbor(const std::array<double, 3>& q, pcl::index_t i) const {
     const pcl::PointXYZ& p = (*cloud_)[std::size_t(i)];
-    const double dx = double(p.x) - q[0], dy = double(p.y) - q[1], dz = double(p.z) - q[2];
-    return {frame_.world({p.x, p.y, p.z}), dx * dx + dy * dy + dz * dz};
+    return frame_.neighbor(q, {p.x, p.y, p.z});
   }
 
   [[nodiscard]] std::vector<std::array<float, 3>> held() const {

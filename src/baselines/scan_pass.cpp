@@ -66,10 +66,7 @@ class ScanPass final : public Method {
     return all;
   }
   [[nodiscard]] std::vector<Eigen::Vector3d> box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const override {
-    detail::Box b;
-    b.half_open = false;
-    b.lo = frame_.local(lo);
-    b.hi = frame_.local(hi);
+    const detail::Box b = frame_.closed_box(lo, hi);
     std::vector<Eigen::Vector3d> out;
     for_each_held([&](const std::array<float, 3>& p) {
       if (b.contains(p[0], p[1], p[2])) out.push_back(frame_.world(p));
@@ -108,7 +105,6 @@ class ScanPass final : public Method {
     config.density_cap = {};  // the pass is the reference of the capped runs too: it counts nothing
     return config;
   }
-  static bool nearer(const Neighbor& a, const Neighbor& b) { return a.sq_dist < b.sq_dist; }
 
   template <class F>
   void for_each_held(F&& f) const {
@@ -127,10 +123,7 @@ class ScanPass final : public Method {
     if (!query.allFinite()) throw std::invalid_argument("scan_pass: query is not finite");
     const std::array<double, 3> q = frame_.local(query);
     std::vector<Neighbor> out;
-    for_each_held([&](const std::array<float, 3>& p) {
-      const double dx = double(p[0]) - q[0], dy = double(p[1]) - q[1], dz = double(p[2]) - q[2];
-      out.push_back({frame_.world(p), dx * dx + dy * dy + dz * dz});
-    });
+    for_each_held([&](const std::array<float, 3>& p) { out.push_back(frame_.neighbor(q, p)); });
     return out;
   }
 

@@ -92,12 +92,12 @@ std::uint32_t Tree::start_node(const Cell& cell, Cell& at) {
   return id;
 }
 
-void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* first, StoredPoint* last,
+void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, StoredPoint* to,
                         StoredPoint* temp) {
-  const auto m = std::uint32_t(last - first);
+  const auto m = std::uint32_t(to - from);
   if (nodes[id].leaf && (nodes[id].count + m <= cfg.leaf_capacity || cell.depth >= lattice.max_depth)) {
     Node& n = nodes[id];
-    for (const StoredPoint* s = first; s != last; ++s) {
+    for (const StoredPoint* s = from; s != to; ++s) {
       points.push(n.link, n.count++, *s);
       n.bounds.grow(s->p[0], s->p[1], s->p[2]);
       n.oldest = std::min(n.oldest, s->stamp);
@@ -117,7 +117,7 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* first, 
   std::array<std::uint32_t, 9> begin{};
   Aabb bounds;
   std::uint32_t oldest = kNone;
-  for (const StoredPoint* s = first; s != last; ++s) {
+  for (const StoredPoint* s = from; s != to; ++s) {
     ++begin[std::size_t(octant(*s)) + 1];
     bounds.grow(s->p[0], s->p[1], s->p[2]);
     oldest = std::min(oldest, s->stamp);
@@ -125,7 +125,7 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* first, 
   for (std::size_t o = 0; o < 8; ++o) begin[o + 1] += begin[o];
   std::array<std::uint32_t, 8> at{};
   std::copy(begin.begin(), begin.end() - 1, at.begin());
-  for (const StoredPoint* s = first; s != last; ++s) temp[at[std::size_t(octant(*s))]++] = *s;
+  for (const StoredPoint* s = from; s != to; ++s) temp[at[std::size_t(octant(*s))]++] = *s;
   Node& n = nodes[id];
   n.count += m;
   n.bounds.merge(bounds);
@@ -134,7 +134,7 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* first, 
     const std::uint32_t lo = begin[std::size_t(o)], hi = begin[std::size_t(o) + 1];
     if (lo == hi) continue;
     const std::uint32_t ch = child_or_new(id, cell, o);
-    insert_range(ch, lattice.child(cell, o), temp + lo, temp + hi, first + lo);
+    insert_range(ch, lattice.child(cell, o), temp + lo, temp + hi, from + lo);
   }
 }
 

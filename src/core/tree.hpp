@@ -139,10 +139,10 @@ struct Tree {
 
  private:
   void split(std::uint32_t id, const Cell& cell);
-  /// Inserts points [first, last), all inside `cell`, into the subtree at `id`, partitioning them
+  /// Inserts points [from, to), all inside `cell`, into the subtree at `id`, partitioning them
   /// into `temp` (room for as many; both ranges are overwritten); the caller adds them to the
   /// ancestors.
-  void insert_range(std::uint32_t id, const Cell& cell, StoredPoint* first, StoredPoint* last,
+  void insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, StoredPoint* to,
                     StoredPoint* temp);
   /// The node at the start depth holding `cell`'s points (created on the way), or the leaf above.
   std::uint32_t start_node(const Cell& cell, Cell& at);
