@@ -1,22 +1,20 @@
 #pragma once
-// Leaf point buckets: a chain of fixed-size structure-of-arrays chunks per leaf, pooled with a free
-// list. The head chunk is the partly filled one, so appending is O(1); distance loops run over
-// plain float arrays.
+// Leaf point buckets: each leaf's points lie in one contiguous structure-of-arrays block (x[], y[],
+// z[], then stamps[] when kept), so a leaf is read front to back with no pointer chase. Blocks come
+// in size classes growing by about 1.5x; each class is a pool of fixed-size pages with a free list,
+// so growing a pool never moves or copies what it holds.
 
 #include "core/node_store.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <stdexcept>
 #include <vector>
 
 namespace eco::detail {
-
-inline constexpr int kChunkPoints = 8;
-
-struct Chunk {
-  std::array<float, kChunkPoints> x{}, y{}, z{};
-  std::uint32_t next = kNone;
-};
 
 /// A point as the tree stores it: anchor-frame float coordinates and its insertion stamp.
 struct StoredPoint {
@@ -24,81 +22,176 @@ struct StoredPoint {
   std::uint32_t stamp = 0;
 };
 
+/// The points of one leaf, read in place: coordinates by axis, stamps (null when not kept).
+struct PointSpan {
+  const float* x;
+  const float* y;
+  const float* z;
+  const std::uint32_t* stamps;
+  std::uint32_t size;
+};
+
 class PointStore {
  public:
   explicit PointStore(bool keep_stamps = false) : keep_stamps_(keep_stamps) {}
 
-  /// Appends to the chain at `head` that holds `count` points.
-  void push(std::uint32_t& head, std::uint32_t count, const StoredPoint& s) {
-    int slot = static_cast<int>(count % kChunkPoints);
-    if (slot == 0) {
-      const std::uint32_t id = take();
-      chunks_[id].next = head;
-      head = id;
-    }
-    Chunk& c = chunks_[head];
-    c.x[slot] = s.p[0];
-    c.y[slot] = s.p[1];
-    c.z[slot] = s.p[2];
-    if (keep_stamps_) stamps_[std::size_t(head) * kChunkPoints + std::size_t(slot)] = s.stamp;
+  /// Appends [first, last) to the block at `link` that holds `count` points (kNone: no block yet).
+  void append(std::uint32_t& link, std::uint32_t count, const StoredPoint* first, const StoredPoint* last) {
+    const auto m = std::uint32_t(last - first);
+    if (m == 0) return;
+    reserve(link, count, count + m);
+    Block b = block(link);
+    for (std::uint32_t i = 0; i < m; ++i) write(b, count + i, first[i]);
+  }
+  void push(std::uint32_t& link, std::uint32_t count, const StoredPoint& s) { append(link, count, &s, &s + 1); }
+
+  /// The `count` points of the block at `link`.
+  [[nodiscard]] PointSpan span(std::uint32_t link, std::uint32_t count) const {
+    if (link == kNone) return {nullptr, nullptr, nullptr, nullptr, 0};
+    const Block b = block(link);
+    return {b.x, b.x + b.capacity, b.x + 2 * std::size_t(b.capacity), b.stamps, count};
   }
 
-  /// Calls f(chunk, stamps_or_null, n) for each chunk of the chain, n the points it holds.
+  /// Calls f(const StoredPoint&) for each of the `count` points at `link`.
   template <class F>
-  void for_each_chunk(std::uint32_t head, std::uint32_t count, F&& f) const {
-    std::uint32_t n = count % kChunkPoints == 0 ? kChunkPoints : count % kChunkPoints;
-    for (std::uint32_t id = head; id != kNone && count > 0; id = chunks_[id].next) {
-      f(chunks_[id], keep_stamps_ ? &stamps_[std::size_t(id) * kChunkPoints] : nullptr, int(n));
-      count -= n;
-      n = kChunkPoints;
+  void for_each(std::uint32_t link, std::uint32_t count, F&& f) const {
+    const PointSpan s = span(link, count);
+    for (std::uint32_t i = 0; i < s.size; ++i) f(StoredPoint{{s.x[i], s.y[i], s.z[i]}, s.stamps ? s.stamps[i] : 0u});
+  }
+
+  /// Keeps the points for which keep(const StoredPoint&) holds, in order; returns how many.
+  /// A block left far larger than its points moves to a smaller one; an empty one is released.
+  template <class Keep>
+  std::uint32_t retain(std::uint32_t& link, std::uint32_t count, Keep&& keep) {
+    if (link == kNone) return 0;
+    Block b = block(link);
+    std::uint32_t kept = 0;
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const StoredPoint s = read(b, i);
+      if (keep(s)) write(b, kept++, s);
     }
-  }
-
-  /// Calls f(const StoredPoint&) for each point of the chain.
-  template <class F>
-  void for_each(std::uint32_t head, std::uint32_t count, F&& f) const {
-    for_each_chunk(head, count, [&](const Chunk& c, const std::uint32_t* stamps, int n) {
-      for (int i = 0; i < n; ++i) f(StoredPoint{{c.x[i], c.y[i], c.z[i]}, stamps ? stamps[i] : 0u});
-    });
-  }
-
-  /// Appends every point of the chain to `out` and releases the chain.
-  void drain(std::uint32_t& head, std::uint32_t count, std::vector<StoredPoint>& out) {
-    for_each(head, count, [&](const StoredPoint& s) { out.push_back(s); });
-    release(head);
-  }
-
-  void release(std::uint32_t& head) {
-    for (std::uint32_t id = head; id != kNone;) {
-      const std::uint32_t next = chunks_[id].next;
-      free_.push_back(id);
-      id = next;
+    if (kept == 0) {
+      release(link);
+    } else if (class_for(kept) + 1 < class_of(link)) {
+      move_to(link, kept, class_for(kept));
     }
-    head = kNone;
+    return kept;
+  }
+
+  /// Appends the `count` points at `link` to `out` and releases the block.
+  void drain(std::uint32_t& link, std::uint32_t count, std::vector<StoredPoint>& out) {
+    for_each(link, count, [&](const StoredPoint& s) { out.push_back(s); });
+    release(link);
+  }
+
+  void release(std::uint32_t& link) {
+    if (link == kNone) return;
+    pools_[std::size_t(class_of(link))].free.push_back(index_of(link));
+    link = kNone;
   }
 
   [[nodiscard]] bool keeps_stamps() const { return keep_stamps_; }
   [[nodiscard]] std::size_t bytes() const {
-    return chunks_.capacity() * sizeof(Chunk) + stamps_.capacity() * sizeof(std::uint32_t) +
-           free_.capacity() * sizeof(std::uint32_t);
+    std::size_t total = pools_.capacity() * sizeof(Pool);
+    for (const Pool& p : pools_) {
+      total += p.pages.size() * p.page_bytes + p.pages.capacity() * sizeof(p.pages[0]) +
+               p.free.capacity() * sizeof(std::uint32_t);
+    }
+    return total;
+  }
+
+  /// Points a block of size class c holds: 2, 3, 4, 6, 8, 12, 16, ... (about 1.5x a step).
+  static std::uint32_t capacity_of(int c) {
+    return c % 2 == 0 ? std::uint32_t{2} << (c / 2) : std::uint32_t{3} << (c / 2);
+  }
+  /// The smallest size class that holds n points.
+  static int class_for(std::uint32_t n) {
+    int c = 0;
+    while (capacity_of(c) < n) ++c;
+    return c;
   }
 
  private:
-  std::uint32_t take() {
-    if (!free_.empty()) {
-      const std::uint32_t id = free_.back();
-      free_.pop_back();
-      return id;
+  static constexpr int kIndexBits = 26;  // a link: size class above, block index below
+  static constexpr std::uint32_t kIndexMask = (std::uint32_t{1} << kIndexBits) - 1;
+  static constexpr std::size_t kPageBytes = std::size_t{1} << 16;
+
+  struct Pool {
+    std::size_t block_bytes = 0;
+    std::uint32_t per_page_shift = 0;  // blocks per page = 2^shift
+    std::size_t page_bytes = 0;
+    std::vector<std::unique_ptr<std::byte[]>> pages;
+    std::uint32_t used = 0;  // blocks handed out so far, free or not
+    std::vector<std::uint32_t> free;
+  };
+  struct Block {
+    float* x;
+    std::uint32_t* stamps;
+    std::uint32_t capacity;
+  };
+
+  static int class_of(std::uint32_t link) { return int(link >> kIndexBits); }
+  static std::uint32_t index_of(std::uint32_t link) { return link & kIndexMask; }
+
+  [[nodiscard]] Block block(std::uint32_t link) const {
+    const int c = class_of(link);
+    const Pool& p = pools_[std::size_t(c)];
+    const std::uint32_t i = index_of(link);
+    std::byte* at = p.pages[i >> p.per_page_shift].get() + (i & ((1u << p.per_page_shift) - 1)) * p.block_bytes;
+    const std::uint32_t cap = capacity_of(c);
+    return {reinterpret_cast<float*>(at),
+            keep_stamps_ ? reinterpret_cast<std::uint32_t*>(at + 3 * sizeof(float) * cap) : nullptr, cap};
+  }
+  static StoredPoint read(const Block& b, std::uint32_t i) {
+    return {{b.x[i], b.x[b.capacity + i], b.x[2 * std::size_t(b.capacity) + i]}, b.stamps ? b.stamps[i] : 0u};
+  }
+  static void write(Block& b, std::uint32_t i, const StoredPoint& s) {
+    b.x[i] = s.p[0];
+    b.x[b.capacity + i] = s.p[1];
+    b.x[2 * std::size_t(b.capacity) + i] = s.p[2];
+    if (b.stamps) b.stamps[i] = s.stamp;
+  }
+
+  /// Makes the block at `link` (holding `count`) hold at least `needed` points.
+  void reserve(std::uint32_t& link, std::uint32_t count, std::uint32_t needed) {
+    if (link != kNone && capacity_of(class_of(link)) >= needed) return;
+    move_to(link, count, class_for(needed));
+  }
+  /// Moves the `count` points at `link` to a fresh block of class c.
+  void move_to(std::uint32_t& link, std::uint32_t count, int c) {
+    const std::uint32_t fresh = take(c);
+    if (link != kNone) {
+      const Block from = block(link);
+      Block to = block(fresh);
+      for (std::uint32_t i = 0; i < count; ++i) write(to, i, read(from, i));
+      release(link);
     }
-    chunks_.emplace_back();
-    if (keep_stamps_) stamps_.resize(chunks_.size() * kChunkPoints);
-    return static_cast<std::uint32_t>(chunks_.size() - 1);
+    link = fresh;
+  }
+  std::uint32_t take(int c) {
+    if (pools_.size() <= std::size_t(c)) pools_.resize(std::size_t(c) + 1);
+    Pool& p = pools_[std::size_t(c)];
+    if (p.block_bytes == 0) {
+      p.block_bytes = std::size_t(capacity_of(c)) * (keep_stamps_ ? 4 : 3) * sizeof(float);
+      while ((p.block_bytes << (p.per_page_shift + 1)) <= kPageBytes) ++p.per_page_shift;
+      p.page_bytes = p.block_bytes << p.per_page_shift;
+    }
+    std::uint32_t i;
+    if (!p.free.empty()) {
+      i = p.free.back();
+      p.free.pop_back();
+    } else {
+      if (p.used > kIndexMask) throw std::length_error("eco: too many point blocks of one size");
+      if ((p.used >> p.per_page_shift) == p.pages.size()) {
+        p.pages.push_back(std::make_unique_for_overwrite<std::byte[]>(p.page_bytes));
+      }
+      i = p.used++;
+    }
+    return std::uint32_t(c) << kIndexBits | i;
   }
 
   bool keep_stamps_;
-  std::vector<Chunk> chunks_;
-  std::vector<std::uint32_t> stamps_;  // kChunkPoints per chunk, only when keep_stamps_
-  std::vector<std::uint32_t> free_;
+  std::vector<Pool> pools_;
 };
 
 }  // namespace eco::detail

@@ -97,8 +97,9 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, S
   const auto m = std::uint32_t(to - from);
   if (nodes[id].leaf && (nodes[id].count + m <= cfg.leaf_capacity || cell.depth >= lattice.max_depth)) {
     Node& n = nodes[id];
+    points.append(n.link, n.count, from, to);
+    n.count += m;
     for (const StoredPoint* s = from; s != to; ++s) {
-      points.push(n.link, n.count++, *s);
       n.bounds.grow(s->p[0], s->p[1], s->p[2]);
       n.oldest = std::min(n.oldest, s->stamp);
     }
@@ -153,14 +154,29 @@ void Tree::split(std::uint32_t id, const Cell& cell) {
   const std::size_t base = scratch.size();
   points.drain(nodes[id].link, nodes[id].count, scratch);
   nodes.make_inner(id);
-  for (std::size_t i = base; i < scratch.size(); ++i) {
-    const StoredPoint s = scratch[i];
-    const std::uint32_t ch = child_or_new(id, cell, lattice.octant(cell, s.p));
-    Node& n = nodes[ch];
-    points.push(n.link, n.count, s);
-    ++n.count;
-    n.bounds.grow(s.p[0], s.p[1], s.p[2]);
-    n.oldest = std::min(n.oldest, s.stamp);
+  // Group the points by octant (a counting sort behind them), then hand each child its group.
+  const std::size_t m = scratch.size() - base;
+  std::array<std::uint32_t, 9> begin{};
+  for (std::size_t i = base; i < base + m; ++i) ++begin[std::size_t(lattice.octant(cell, scratch[i].p)) + 1];
+  for (std::size_t o = 0; o < 8; ++o) begin[o + 1] += begin[o];
+  std::array<std::uint32_t, 8> at{};
+  std::copy(begin.begin(), begin.end() - 1, at.begin());
+  scratch.resize(base + 2 * m);
+  StoredPoint* grouped = scratch.data() + base + m;
+  for (std::size_t i = base; i < base + m; ++i) {
+    grouped[at[std::size_t(lattice.octant(cell, scratch[i].p))]++] = scratch[i];
+  }
+  for (int o = 0; o < 8; ++o) {
+    const StoredPoint* from = grouped + begin[std::size_t(o)];
+    const StoredPoint* to = grouped + begin[std::size_t(o) + 1];
+    if (from == to) continue;
+    Node& n = nodes[child_or_new(id, cell, o)];
+    points.append(n.link, n.count, from, to);
+    n.count += std::uint32_t(to - from);
+    for (const StoredPoint* s = from; s != to; ++s) {
+      n.bounds.grow(s->p[0], s->p[1], s->p[2]);
+      n.oldest = std::min(n.oldest, s->stamp);
+    }
   }
   scratch.resize(base);
   for (int o = 0; o < 8; ++o) {
@@ -237,7 +253,8 @@ void Tree::collapse(std::uint32_t id) {
   nodes.make_leaf_of_inner(id);
   Node& n = nodes[id];
   n.count = 0;
-  for (std::size_t i = base; i < scratch.size(); ++i) points.push(n.link, n.count++, scratch[i]);
+  points.append(n.link, 0, scratch.data() + base, scratch.data() + scratch.size());
+  n.count = std::uint32_t(scratch.size() - base);
   scratch.resize(base);
 }
 

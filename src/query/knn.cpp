@@ -49,15 +49,14 @@ class KnnSearch {
   void visit(std::uint32_t id) {
     const detail::Node& n = t_.nodes[id];
     if (n.leaf) {
-      t_.points.for_each_chunk(n.link, n.count, [&](const detail::Chunk& c, const std::uint32_t*, int m) {
-        for (int i = 0; i < m; ++i) {
-          const double dx = double(c.x[i]) - q_[0];
-          const double dy = double(c.y[i]) - q_[1];
-          const double dz = double(c.z[i]) - q_[2];
-          const double d2 = dx * dx + dy * dy + dz * dz;
-          if (d2 < worst()) offer(d2, {c.x[i], c.y[i], c.z[i]});
-        }
-      });
+      const detail::PointSpan c = t_.points.span(n.link, n.count);
+      for (std::uint32_t i = 0; i < c.size; ++i) {
+        const double dx = double(c.x[i]) - q_[0];
+        const double dy = double(c.y[i]) - q_[1];
+        const double dz = double(c.z[i]) - q_[2];
+        const double d2 = dx * dx + dy * dy + dz * dz;
+        if (d2 < worst()) offer(d2, {c.x[i], c.y[i], c.z[i]});
+      }
       return;
     }
     std::array<std::pair<double, std::uint32_t>, 8> order;

@@ -12,6 +12,9 @@
 #include <eco/ego_octree.hpp>
 
 #include <algorithm>
+#include <array>
+#include <bit>
+#include <limits>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -46,6 +49,12 @@ void require_representable(const Tree& t, double resolution) {
   }
 }
 
+/// The smallest float not below w: for any float p, p >= result exactly when double(p) >= w.
+float float_at_or_above(double w) {
+  const auto f = float(w);
+  return double(f) < w ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
 class LatticeVoxels {
  public:
   LatticeVoxels(const Tree& t, double resolution, int shift, std::vector<VoxelKey>& out)
@@ -59,16 +68,14 @@ class LatticeVoxels {
       return;
     }
     if (n.leaf) {
-      const std::size_t base = out_.size();
-      t_.points.for_each(n.link, n.count, [&](const StoredPoint& s) {
-        const VoxelKey key{world_grid_index(t_.anchor[0], s.p[0], res_), world_grid_index(t_.anchor[1], s.p[1], res_),
-                           world_grid_index(t_.anchor[2], s.p[2], res_)};
-        if (out_.size() == base || out_.back() != key) out_.push_back(key);
-      });
-      std::sort(out_.begin() + std::ptrdiff_t(base), out_.end());
-      out_.erase(std::unique(out_.begin() + std::ptrdiff_t(base), out_.end()), out_.end());
+      if (shift_ >= 0 && depth_ - cell.depth <= kMaskLevels) {
+        collect_masked(n, cell);
+      } else {
+        collect_sorted(n);
+      }
       return;
     }
+    t_.nodes.prefetch_children(id);
     for (int o = 0; o < 8; ++o) {
       const std::uint32_t ch = t_.nodes.child(id, o);
       if (ch != kNone) collect(ch, t_.lattice.child(cell, o));
@@ -76,6 +83,53 @@ class LatticeVoxels {
   }
 
  private:
+  /// A leaf at most this many levels above the voxels marks its voxels in a bitmask (8^3 bits).
+  static constexpr int kMaskLevels = 3;
+
+  /// Marks the voxel of each point of leaf `n` (cell `cell`) in a bitmask, found by comparing
+  /// with the lattice walls inside the cell, then lists the marked voxels: no division, no sort.
+  void collect_masked(const Node& n, const Cell& cell) {
+    const int levels = depth_ - cell.depth;
+    const int per_axis = 1 << levels;
+    const std::int64_t step = t_.lattice.side(depth_);
+    std::array<std::array<float, 8>, 3> walls{};  // inner walls, then +inf: the counts stop there
+    for (int a = 0; a < 3; ++a) {
+      walls[a].fill(std::numeric_limits<float>::infinity());
+      for (int j = 1; j < per_axis; ++j) {
+        walls[a][std::size_t(j - 1)] = float_at_or_above(t_.lattice.wall(a, cell.lo[a] + j * step));
+      }
+    }
+    std::array<std::uint64_t, 8> marked{};
+    t_.points.for_each(n.link, n.count, [&](const StoredPoint& s) {
+      std::array<int, 3> sub{};
+      for (int a = 0; a < 3; ++a) {
+        for (int j = 0; j + 1 < per_axis; ++j) sub[a] += int(s.p[a] >= walls[a][std::size_t(j)]);
+      }
+      const int bit = (sub[2] * per_axis + sub[1]) * per_axis + sub[0];
+      marked[std::size_t(bit >> 6)] |= std::uint64_t{1} << (bit & 63);
+    });
+    const std::array<std::int64_t, 3> first{cell.lo[0] >> shift_, cell.lo[1] >> shift_, cell.lo[2] >> shift_};
+    for (std::size_t w = 0; w < marked.size(); ++w) {
+      for (std::uint64_t bits = marked[w]; bits != 0; bits &= bits - 1) {
+        const int bit = int(w * 64) + std::countr_zero(bits);
+        out_.push_back({first[0] + bit % per_axis, first[1] + bit / per_axis % per_axis,
+                        first[2] + bit / (per_axis * per_axis)});
+      }
+    }
+  }
+
+  /// A leaf far coarser than a voxel: the points' keys, made unique within the leaf.
+  void collect_sorted(const Node& n) {
+    const std::size_t base = out_.size();
+    t_.points.for_each(n.link, n.count, [&](const StoredPoint& s) {
+      const VoxelKey key{world_grid_index(t_.anchor[0], s.p[0], res_), world_grid_index(t_.anchor[1], s.p[1], res_),
+                         world_grid_index(t_.anchor[2], s.p[2], res_)};
+      if (out_.size() == base || out_.back() != key) out_.push_back(key);
+    });
+    std::sort(out_.begin() + std::ptrdiff_t(base), out_.end());
+    out_.erase(std::unique(out_.begin() + std::ptrdiff_t(base), out_.end()), out_.end());
+  }
+
   const Tree& t_;
   double res_;
   int shift_;

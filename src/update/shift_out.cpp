@@ -35,15 +35,8 @@ class Pruner {
 
  private:
   void filter_leaf(std::uint32_t id) {
-    std::vector<StoredPoint>& buffer = t_.scratch;
-    const std::size_t base = buffer.size();
     Node& n = t_.nodes[id];
-    t_.points.drain(n.link, n.count, buffer);
-    n.count = 0;
-    for (std::size_t i = base; i < buffer.size(); ++i) {
-      if (t_.keeps(buffer[i])) t_.points.push(n.link, n.count++, buffer[i]);
-    }
-    buffer.resize(base);
+    n.count = t_.points.retain(n.link, n.count, [&](const StoredPoint& s) { return t_.keeps(s); });
     t_.refit(id);
   }
 
