@@ -74,6 +74,7 @@ class NodeStore {
     return blocks_[nodes_[id].link].child[octant];
   }
 
+  void prefetch(std::uint32_t id) const { __builtin_prefetch(&nodes_[id]); }
   /// Asks the memory system for the children of inner node `id` ahead of a visit, so that
   /// their cache misses overlap instead of coming one after another.
   void prefetch_children(std::uint32_t id) const {

@@ -60,6 +60,7 @@ void Tree::insert_batch(std::vector<StoredPoint>& batch) {
   }
   for (std::size_t b = 0; b + 1 < first.size(); ++b) {
     if (first[b] == first[b + 1]) continue;
+    prefetch_start_node(b + 1, first);
     StoredPoint* group = batch.data() + first[b];
     const std::uint32_t m = first[b + 1] - first[b];
     Cell cell = depth == 0 ? root_cell : lattice.cell_at(depth, group->p);
@@ -72,6 +73,15 @@ void Tree::insert_batch(std::vector<StoredPoint>& batch) {
       n.bounds.merge(top.bounds);
       n.oldest = std::min(n.oldest, top.oldest);
     }
+  }
+}
+
+void Tree::prefetch_start_node(std::size_t from, const std::vector<std::uint32_t>& first) const {
+  if (start.depth == 0) return;
+  for (std::size_t b = from; b + 1 < first.size(); ++b) {
+    if (first[b] == first[b + 1]) continue;
+    if (const std::uint32_t id = start.slots[b]; id != kNone) nodes.prefetch(id);
+    return;
   }
 }
 
@@ -106,6 +116,7 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, S
     return;
   }
   if (nodes[id].leaf) split(id, cell);  // holds at most leaf_capacity: its children need no split
+  nodes.prefetch_children(id);  // their misses overlap the partition below
   // Partition by octant into `temp` (a counting sort); the children read from there and use
   // this range as theirs.
   const std::int64_t half = lattice.side(cell.depth) / 2;

@@ -146,6 +146,9 @@ struct Tree {
                     StoredPoint* temp);
   /// The node at the start depth holding `cell`'s points (created on the way), or the leaf above.
   std::uint32_t start_node(const Cell& cell, Cell& at);
+  /// Prefetches the start node of the first non-empty group at or after `from` (groups of
+  /// insert_batch, `first` their bounds), so its miss overlaps the work on the group before.
+  void prefetch_start_node(std::size_t from, const std::vector<std::uint32_t>& first) const;
   void note_created(std::uint32_t id, const Cell& cell);
   std::int64_t start_slot(const Cell& cell) const;
 };
