@@ -28,28 +28,35 @@ std::string describe(const Eigen::Vector3d& v) {
   return s.str();
 }
 
-/// Lists and tuples become float64 arrays; anything else that is not an ndarray is refused.
+/// Lists, tuples and objects numpy can read (__array__) become arrays; anything else is refused.
 py::array as_array(py::handle object, const char* name) {
   if (py::isinstance<py::array>(object)) return py::reinterpret_borrow<py::array>(object);
-  if (!py::isinstance<py::list>(object) && !py::isinstance<py::tuple>(object)) {
+  const bool listlike = py::isinstance<py::list>(object) || py::isinstance<py::tuple>(object);
+  if (!listlike && !py::hasattr(object, "__array__")) {
     throw py::type_error(std::string(name) + " must be a numpy array (or a list of numbers), got " +
                          type_name(object));
   }
   try {
-    return py::module_::import("numpy").attr("asarray")(object, "dtype"_a = "float64");
+    return py::module_::import("numpy").attr("asarray")(object, "dtype"_a = listlike ? py::object(py::str("float64"))
+                                                                                      : py::object(py::none()));
   } catch (const py::error_already_set& e) {
     throw py::type_error(std::string(name) + " is not a list of numbers: " + e.what());
+  }
+}
+
+/// Refuses arrays that do not hold real numbers (bool, complex, strings, objects, dates).
+void require_real(const py::array& a, const char* name) {
+  const char kind = a.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u') {
+    throw py::type_error(std::string(name) + " must hold real numbers, got dtype " +
+                         std::string(py::str(py::handle(a.dtype()))));
   }
 }
 
 /// A small argument (a vector, a pose) of any real dtype and layout, as float64.
 py::array_t<double> small_array(py::handle object, const char* name) {
   const py::array a = as_array(object, name);
-  const char kind = a.dtype().kind();
-  if (kind != 'f' && kind != 'i' && kind != 'u') {
-    throw py::type_error(std::string(name) + " must hold real numbers, got dtype " +
-                         std::string(py::str(py::handle(a.dtype()))));
-  }
+  require_real(a, name);
   return py::array_t<double, py::array::c_style | py::array::forcecast>(a);
 }
 
@@ -57,23 +64,17 @@ py::array_t<double> small_array(py::handle object, const char* name) {
 
 Rows3::Rows3(py::handle object, const char* name, bool allow_single)
     : array_(as_array(object, name)), name_(name) {
-  if (allow_single && array_.ndim() == 1 && array_.shape(0) == 3) {
-    array_ = small_array(array_, name);  // one point: any real dtype and layout will do
-  }
-  const py::dtype dtype = array_.dtype();
-  float32_ = dtype.equal(py::dtype::of<float>());
-  if (!float32_ && !dtype.equal(py::dtype::of<double>())) {
-    throw py::type_error(std::string(name) + " must have dtype float32 or float64, got " +
-                         std::string(py::str(py::handle(dtype))));
-  }
+  require_real(array_, name);
   single_ = allow_single && array_.ndim() == 1 && array_.shape(0) == 3;
   if (!single_ && !(array_.ndim() == 2 && array_.shape(1) == 3)) {
     throw py::value_error(std::string(name) + " must have shape (N, 3)" +
                           (allow_single ? " or (3,)" : "") + ", got " + shape_of(array_));
   }
-  if (!(array_.flags() & py::array::c_style)) {
-    throw py::value_error(std::string(name) +
-                          " must be C-contiguous; pass numpy.ascontiguousarray(" + name + ")");
+  // C-contiguous float32 and float64 are read in place; anything else is copied to float64.
+  const bool in_place = (array_.flags() & py::array::c_style) != 0;
+  float32_ = in_place && array_.dtype().equal(py::dtype::of<float>());
+  if (!float32_ && !(in_place && array_.dtype().equal(py::dtype::of<double>()))) {
+    array_ = py::array_t<double, py::array::c_style | py::array::forcecast>(array_);
   }
   count_ = single_ ? 1 : std::size_t(array_.shape(0));
 }

@@ -1,7 +1,7 @@
 #pragma once
 // numpy arguments in, numpy results out. Every check names the Python argument it rejects:
-// TypeError for the wrong kind of object or dtype, ValueError for a wrong shape, a
-// non-contiguous array or a non-finite value.
+// TypeError for the wrong kind of object or dtype, ValueError for a wrong shape or a non-finite
+// value. Array-likes of any real dtype and layout are converted when needed, as numpy and SciPy do.
 
 #include <eco/types.hpp>
 
@@ -16,9 +16,9 @@ namespace eco::python {
 
 namespace py = pybind11;
 
-/// An (N, 3) C-contiguous array of float32 or float64 coordinates, checked and held for the
-/// duration of a call; or, when allowed, one (3,) point of any real dtype and layout. Reading rows
-/// needs no GIL.
+/// An (N, 3) array-like of real coordinates (any dtype, any strides), checked and held for the
+/// duration of a call; or, when allowed, one (3,) point. C-contiguous float32 and float64 arrays
+/// are read in place, anything else through a float64 copy. Reading rows needs no GIL.
 class Rows3 {
  public:
   /// `allow_single`: a (3,) array is taken as one row, and results drop the leading axis.
@@ -58,6 +58,13 @@ template <class Vector>
   const std::size_t n = owned->size();
   return py::array_t<Scalar>({n, std::size_t(3)}, {3 * sizeof(Scalar), sizeof(Scalar)},
                              n ? owned->front().data() : nullptr, owner);
+}
+/// An array of the given shape (C order) that owns `values` without copying.
+template <class T>
+[[nodiscard]] py::array_t<T> shaped_array(std::vector<T>&& values, const std::vector<std::size_t>& shape) {
+  auto* owned = new std::vector<T>(std::move(values));
+  const py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(shape, owned->empty() ? nullptr : owned->data(), owner);
 }
 /// (N,) array that owns `values` without copying.
 template <class T>

@@ -117,29 +117,27 @@ py::tuple knn(const SharedTree& self, const py::object& queries, const py::objec
   const Frame frame = enum_arg<Frame>(frame_value, "frame");
   const unsigned workers = workers_arg(workers_value);
   const std::size_t m = q.size();
-  using Shape = std::vector<std::size_t>;
-  py::array_t<double> points(q.single() ? Shape{k, 3} : Shape{m, k, 3});
-  py::array_t<double> sq_dists(q.single() ? Shape{k} : Shape{m, k});
-  double* const all_points = points.mutable_data();
-  double* const all_sq_dists = sq_dists.mutable_data();
-  reading(self, [&](const EgoOctree& tree) {
+  // k is clamped to the points held, so a huge k costs no more than the tree's size.
+  std::vector<double> points, sq_dists;
+  const std::size_t columns = reading(self, [&](const EgoOctree& tree) {
+    const std::size_t kept = std::min(k, tree.size());
+    points.resize(m * kept * 3);
+    sq_dists.resize(m * kept);
     in_slices(m, workers, [&](std::size_t begin, std::size_t end) {
-      std::vector<Neighbor> found(std::min(k, tree.size()));
-      double* p = all_points + 3 * k * begin;
-      double* d = all_sq_dists + k * begin;
+      std::vector<Neighbor> found(kept);
       for (std::size_t i = begin; i < end; ++i) {
-        const std::size_t n = tree.knn(q.row(i), found, frame);
-        for (std::size_t j = 0; j < k; ++j, p += 3, ++d) {
-          const bool real = j < n;  // fewer than k held: NaN points at infinite distance
-          for (int c = 0; c < 3; ++c)
-            p[c] = real ? found[j].point[c] : std::numeric_limits<double>::quiet_NaN();
-          *d = real ? found[j].sq_dist : std::numeric_limits<double>::infinity();
+        tree.knn(q.row(i), found, frame);  // finds all `kept`: every held point is a candidate
+        for (std::size_t j = 0; j < kept; ++j) {
+          for (int c = 0; c < 3; ++c) points[(i * kept + j) * 3 + std::size_t(c)] = found[j].point[c];
+          sq_dists[i * kept + j] = found[j].sq_dist;
         }
       }
     });
-    return 0;
+    return kept;
   });
-  return py::make_tuple(points, sq_dists);
+  using Shape = std::vector<std::size_t>;
+  return py::make_tuple(shaped_array(std::move(points), q.single() ? Shape{columns, 3} : Shape{m, columns, 3}),
+                        shaped_array(std::move(sq_dists), q.single() ? Shape{columns} : Shape{m, columns}));
 }
 
 py::object radius(const SharedTree& self, const py::object& queries, const py::object& radius_value,
@@ -185,9 +183,9 @@ to the half-open box [p - L/2, p + L/2) (less density-cap refusals and aged poin
 exact over them. A rejected call raises and leaves the tree unchanged. The GIL is released
 while C++ works; queries may run from several threads at once, updates run alone.
 
-Array arguments: points and queries are (N, 3) numpy arrays of float32 or float64, C-contiguous
-(a non-contiguous array is refused, not silently copied); small arguments (poses, box corners)
-take any real array or list. Results are float64 numpy arrays in the query's frame.)";
+Array arguments: points and queries are (N, 3) array-likes of real numbers (numpy arrays of any
+real dtype and layout, lists); C-contiguous float32 and float64 arrays are read in place, anything
+else is converted first. Small arguments (poses, box corners) take the same. Results are float64 numpy arrays in the query's frame.)";
 
 }  // namespace
 
@@ -211,8 +209,8 @@ void bind_tree(py::module_& m) {
           R"(Advances to the sensor pose and takes in a scan.
 
 pose: 4x4 (or 3x4) world_T_sensor, mapping sensor-frame points to the world.
-points: (N, 3) float32 or float64 array, sensor frame. float64 is rounded to float32 (ECO stores
-    float offsets). NaN/inf rows are skipped and counted, not raised on.
+points: (N, 3) array-like, sensor frame; a C-contiguous float32 array is read in place, anything
+    else converted. Coordinates are rounded to float32 (ECO stores float offsets). NaN/inf rows are skipped and counted, not raised on.
 Returns the UpdateStats of this frame. A non-finite pose or a rotation that is not orthonormal
 raises ValueError and leaves the tree unchanged.)")
       .def(
@@ -231,8 +229,8 @@ pose expressed in the previous sensor frame. The first frame starts from the ide
            R"(The k nearest held points to each query, nearest first, exact.
 
 queries: (M, 3) float32/float64 array, or one (3,) point.
-Returns (points, sq_dists): (M, k, 3) and (M, k) float64 arrays ((k, 3) and (k,) for one
-point). When fewer than k points are held, the missing entries are NaN points at distance inf.
+Returns (points, sq_dists): (M, n, 3) and (M, n) float64 arrays ((n, 3) and (n,) for one
+point), n = min(k, len(tree)): k is clamped to the points held (SciPy pads with inf instead).
 frame: Frame.World (default) or Frame.Ego (world axes, origin at the sensor), or its name.
 workers: threads sharing the batch (default 1; -1: one per core). Answers do not depend on it.)")
       .def("radius", &radius, py::arg("queries"), py::arg("radius"),

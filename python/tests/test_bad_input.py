@@ -27,13 +27,11 @@ def rejects(error, *words):
 # --- update: points ---------------------------------------------------------------------------
 
 @pytest.mark.parametrize("points, error, words", [
-    (GOOD_POINTS.astype(np.int64), TypeError, ["points", "float32 or float64", "int64"]),
-    (GOOD_POINTS.astype(np.float16), TypeError, ["points", "float16"]),
+    (GOOD_POINTS.astype(np.complex128), TypeError, ["points", "real numbers", "complex128"]),
+    (GOOD_POINTS > 0, TypeError, ["points", "real numbers", "bool"]),
     (GOOD_POINTS[:, :2].copy(), ValueError, ["points", r"\(N, 3\)", r"\(3, 2\)"]),
     (GOOD_POINTS.reshape(-1), ValueError, ["points", r"\(9,\)"]),
     (GOOD_POINTS[None], ValueError, ["points", r"\(1, 3, 3\)"]),
-    (np.repeat(GOOD_POINTS, 2, axis=0)[::2], ValueError, ["points", "C-contiguous"]),
-    (np.asfortranarray(np.repeat(GOOD_POINTS, 2, axis=0)), ValueError, ["points", "C-contiguous"]),
     ("1 2 3", TypeError, ["points", "numpy array", "str"]),
     ({"x": 1}, TypeError, ["points", "dict"]),
     ([["a", "b", "c"]], TypeError, ["points", "list of numbers"]),
@@ -105,12 +103,12 @@ def test_three_by_four_poses_and_other_real_dtypes_are_accepted(tree):
 
 def test_bad_queries(tree):
     before = snapshot(tree)
-    with rejects(TypeError, "queries", "int64"):
-        tree.knn(np.zeros((2, 3), dtype=np.int64), 1)
+    with rejects(TypeError, "queries", "complex128"):
+        tree.knn(np.zeros((2, 3), dtype=np.complex128), 1)
     with rejects(ValueError, "queries", r"\(N, 3\) or \(3,\)", r"\(2, 2\)"):
         tree.knn(np.zeros((2, 2)), 1)
-    with rejects(ValueError, "queries", "C-contiguous"):
-        tree.knn(np.zeros((4, 3))[::2], 1)
+    with rejects(ValueError, "queries row 1", "not finite"):  # found in a strided view too
+        tree.knn(np.array([[0, 0, 0, 9], [np.inf, 0, 0, 9]])[:, :3], 1)
     with rejects(ValueError, "queries row 1", "not finite"):
         tree.knn(np.array([[0, 0, 0], [np.nan, 0, 0]]), 1)
     with rejects(ValueError, "queries", "not finite"):

@@ -44,13 +44,55 @@ def test_relative_updates_follow_the_same_path(small_drive):
         assert len(relative) == len(absolute)
 
 
-def test_fewer_points_than_k_pad_with_nan_at_infinity():
+def test_k_is_clamped_to_the_points_held():
     tree = eco.EgoOctree(insert_policy="AllInBox")
     tree.update(np.eye(4), np.array([[1.0, 0.0, 0.0], [0.0, 2.0, 0.0]], dtype=np.float32))
     points, sq_dists = tree.knn([0.0, 0.0, 0.0], 4)
-    np.testing.assert_array_equal(sq_dists, [1.0, 4.0, np.inf, np.inf])
-    np.testing.assert_array_equal(points[:2], [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0]])
-    assert np.isnan(points[2:]).all()
+    np.testing.assert_array_equal(sq_dists, [1.0, 4.0])
+    np.testing.assert_array_equal(points, [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0]])
+    # a k far above the held count allocates nothing k-sized (10**9 columns would be 24 GB)
+    points, sq_dists = tree.knn(np.zeros((3, 3)), 10**9)
+    assert points.shape == (3, 2, 3) and sq_dists.shape == (3, 2)
+    np.testing.assert_array_equal(sq_dists, [[1.0, 4.0]] * 3)
+
+
+def test_queries_take_any_array_like_as_numpy_does(small_drive):
+    tree = eco.EgoOctree(insert_policy="AllInBox")
+    pose, points = next(iter(small_drive))
+    tree.update(pose, points)
+    base = tree.points()[:40] + 0.03
+    expected = tree.knn(np.ascontiguousarray(base, dtype=np.float64), 3)
+    wide = np.zeros((40, 5))
+    wide[:, 1:4] = base
+    variants = {
+        "strided view": wide[:, 1:4],
+        "fortran order": np.asfortranarray(base),
+        "reversed rows": base[::-1][::-1],
+        "list of lists": base.tolist(),
+        "float32 copy": base.astype(np.float32),
+    }
+    for name, queries in variants.items():
+        got = tree.knn(queries, 3)
+        tol = 1e-5 if name == "float32 copy" else 0
+        for want, have in zip(expected, got):
+            np.testing.assert_allclose(have, want, atol=tol, err_msg=name)
+    # the pose's translation as one (1, 3) query: a strided view of a (4, 4) array
+    points, _ = tree.knn(tree.pose[:3, 3][None, :], 1)
+    assert points.shape == (1, 1, 3)
+    counts = tree.knn(np.arange(12).reshape(4, 3), 2)[1].shape  # integers are coordinates too
+    assert counts == (4, 2)
+
+
+def test_scans_take_any_array_like_and_match_the_float32_scan(small_drive):
+    frames = list(small_drive)[:2]
+    reference = eco.EgoOctree(insert_policy="AllInBox")
+    strided = eco.EgoOctree(insert_policy="AllInBox")
+    for pose, points in frames:
+        reference.update(pose, np.ascontiguousarray(points, dtype=np.float32))
+        wide = np.zeros((len(points), 4), dtype=np.float32)
+        wide[:, :3] = points
+        strided.update(pose, wide[:, :3])  # KITTI's x, y, z of an (N, 4) scan, not copied by the caller
+    np.testing.assert_array_equal(np.sort(strided.points(), axis=0), np.sort(reference.points(), axis=0))
 
 
 def test_voxelize_and_keys_agree_with_the_held_points(small_drive):
@@ -71,10 +113,10 @@ def test_voxelize_and_keys_agree_with_the_held_points(small_drive):
 def test_empty_batches_and_an_empty_tree():
     tree = eco.EgoOctree()
     points, sq_dists = tree.knn(np.zeros((0, 3)), 3)
-    assert points.shape == (0, 3, 3) and sq_dists.shape == (0, 3)
+    assert points.shape == (0, 0, 3) and sq_dists.shape == (0, 0)
     assert tree.radius(np.zeros((0, 3), dtype=np.float32), 1.0) == []
     points, sq_dists = tree.knn([1.0, 2.0, 3.0], 2)  # nothing held yet
-    assert np.isnan(points).all() and np.isinf(sq_dists).all()
+    assert points.shape == (0, 3) and sq_dists.shape == (0,)
     assert tree.points().shape == (0, 3) and tree.voxelize(1.0).shape == (0, 3)
     assert tree.ego_box is None and len(tree) == 0
 
