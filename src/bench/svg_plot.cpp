@@ -48,15 +48,23 @@ void write_update_plot(const std::filesystem::path& path, const BenchRun& run) {
       << "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
   svg << "<text x='" << kLeft << "' y='24' font-size='15'>Update time per frame — " << to_string(run.options.workload)
       << " workload, " << run.source << "</text>\n";
-  for (double v = 0; v <= y_max + 1e-9; v += step) {
+  for (double v = 0; v <= y_max + 1e-9; v += step) {  // grid line, tick and label per step
     svg << "<line x1='" << kLeft << "' x2='" << kLeft + plot_w << "' y1='" << y_of(v) << "' y2='" << y_of(v)
-        << "' stroke='#ddd'/><text x='" << kLeft - 6 << "' y='" << y_of(v) + 4 << "' text-anchor='end'>" << v
-        << "</text>\n";
+        << "' stroke='#ddd'/><line class='y-tick' x1='" << kLeft - 5 << "' x2='" << kLeft << "' y1='" << y_of(v)
+        << "' y2='" << y_of(v) << "' stroke='black'/><text class='y-tick-label' x='" << kLeft - 8 << "' y='"
+        << y_of(v) + 4 << "' text-anchor='end'>" << v << "</text>\n";
+  }
+  const double last_frame = double(std::max<std::size_t>(frames - 1, 1));
+  const double frame_step = std::max(1.0, tick_step(last_frame, 8));  // whole frames only
+  for (double f = 0; f <= last_frame + 1e-9; f += frame_step) {
+    const double x = x_of(f), y = kTop + plot_h;
+    svg << "<line class='x-tick' x1='" << x << "' x2='" << x << "' y1='" << y << "' y2='" << y + 5
+        << "' stroke='black'/><text class='x-tick-label' x='" << x << "' y='" << y + 18
+        << "' text-anchor='middle'>" << f << "</text>\n";
   }
   svg << "<rect x='" << kLeft << "' y='" << kTop << "' width='" << plot_w << "' height='" << plot_h
       << "' fill='none' stroke='black'/>\n";
-  svg << "<text x='" << kLeft + plot_w / 2 << "' y='" << kHeight - 12 << "' text-anchor='middle'>frame (0 … "
-      << frames - 1 << ")</text>\n";
+  svg << "<text x='" << kLeft + plot_w / 2 << "' y='" << kHeight - 10 << "' text-anchor='middle'>frame</text>\n";
   svg << "<text transform='translate(18," << kTop + plot_h / 2 << ") rotate(-90)' text-anchor='middle'>update [ms]</text>\n";
   for (std::size_t m = 0; m < run.methods.size(); ++m) {
     const char* colour = kColours[m % std::size(kColours)];

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -72,6 +73,98 @@ TEST(Summary, MeansSkipTheFirstBuildAndP99IsANearestRank) {
 
 class ShortRun : public ::testing::TestWithParam<WorkloadKind> {};
 
+/// The cells of a markdown table row, trimmed.
+std::vector<std::string> cells(const std::string& row) {
+  std::vector<std::string> out;
+  std::istringstream in(row.substr(1));
+  std::string cell;
+  while (std::getline(in, cell, '|')) {
+    const auto first = cell.find_first_not_of(' ');
+    const auto last = cell.find_last_not_of(' ');
+    out.push_back(first == std::string::npos ? "" : cell.substr(first, last - first + 1));
+  }
+  return out;
+}
+
+/// Every markdown table of `md` has as many cells in each row as in its header, and the
+/// per-method table's headings stand over the values summary.json gives for them.
+void expect_tables_line_up(const std::string& md, const nlohmann::json& summary) {
+  std::istringstream lines(md);
+  std::string line;
+  std::vector<std::vector<std::string>> table;
+  int tables = 0, checked_rows = 0;
+  auto finish = [&] {
+    if (table.empty()) return;
+    ++tables;
+    const std::vector<std::string>& header = table.front();
+    for (std::size_t r = 1; r < table.size(); ++r) {
+      ASSERT_EQ(table[r].size(), header.size()) << "table " << tables << " row " << r;
+    }
+    if (header.size() < 2 || header[1] != "first update ms") return;
+    auto column = [&](const std::string& heading) {
+      const auto at = std::find(header.begin(), header.end(), heading);
+      EXPECT_NE(at, header.end()) << heading;
+      return std::size_t(at - header.begin());
+    };
+    for (std::size_t r = 2; r < table.size(); ++r) {  // after the alignment row
+      const nlohmann::json& m = summary.at("methods").at(table[r][0]);
+      auto expect_cell = [&](const std::string& heading, const char* key, double tolerance) {
+        const std::string& cell = table[r][column(heading)];
+        if (m.at(key).is_null()) {  // not measured (a query the method does not answer)
+          EXPECT_EQ(cell, "–") << heading;
+        } else {
+          EXPECT_NEAR(std::stod(cell), m.at(key).get<double>(), tolerance) << heading;
+        }
+      };
+      expect_cell("update ms", "update_ms", 5e-4);
+      expect_cell("p99 ms", "update_ms_p99", 5e-4);
+      expect_cell("voxel ms", "voxel_ms", 5e-4);
+      expect_cell("KNN ms", "knn_ms", 5e-4);
+      expect_cell("held points", "points", 0.5);
+      expect_cell("bytes/point", "bytes_per_point", 0.05);
+      ++checked_rows;
+    }
+  };
+  while (std::getline(lines, line)) {
+    if (line.rfind("|", 0) == 0) {
+      table.push_back(cells(line));
+    } else {
+      finish();
+      table.clear();
+    }
+  }
+  finish();
+  EXPECT_EQ(tables, 2);
+  EXPECT_EQ(checked_rows, int(summary.at("methods").size()));
+}
+
+/// The chart labels both axes with ticks: frames from 0 by a whole step, ms from 0 upwards.
+void expect_ticks_on_both_axes(const std::string& svg, int frames) {
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  for (const std::string axis : {"x", "y"}) {
+    SCOPED_TRACE(axis);
+    std::vector<double> labels;
+    const std::string marker = "class='" + axis + "-tick-label'";
+    for (auto at = svg.find(marker); at != std::string::npos; at = svg.find(marker, at + 1)) {
+      const auto text = svg.find('>', at) + 1;
+      labels.push_back(std::stod(svg.substr(text, svg.find('<', text) - text)));
+    }
+    std::size_t ticks = 0;
+    for (auto at = svg.find("class='" + axis + "-tick'"); at != std::string::npos;
+         at = svg.find("class='" + axis + "-tick'", at + 1)) {
+      ++ticks;
+    }
+    ASSERT_GE(labels.size(), 2u);
+    EXPECT_EQ(ticks, labels.size());
+    EXPECT_EQ(labels.front(), 0.0);
+    EXPECT_TRUE(std::is_sorted(labels.begin(), labels.end()));
+    if (axis == "x") {
+      EXPECT_LE(labels.back(), frames - 1);
+      for (double f : labels) EXPECT_EQ(f, std::floor(f));
+    }
+  }
+}
+
 TEST_P(ShortRun, AllMethodsHoldTheSamePointsAndTheResultsFolderIsComplete) {
   BenchOptions o;
   o.workload = GetParam();
@@ -126,7 +219,8 @@ TEST_P(ShortRun, AllMethodsHoldTheSamePointsAndTheResultsFolderIsComplete) {
   const std::string md = read(dir / "out/summary.md");
   EXPECT_NE(md.find("| octree_base |"), std::string::npos);
   EXPECT_NE(md.find("Table II"), std::string::npos);
-  EXPECT_EQ(read(dir / "out/update_ms.svg").rfind("<svg", 0), 0u);
+  expect_tables_line_up(md, summary);
+  expect_ticks_on_both_axes(read(dir / "out/update_ms.svg"), 4);
 }
 
 std::string workload_name(const ::testing::TestParamInfo<WorkloadKind>& param) { return to_string(param.param); }
