@@ -114,7 +114,7 @@ class PointStore {
  private:
   static constexpr int kIndexBits = 26;  // a link: size class above, block index below
   static constexpr std::uint32_t kIndexMask = (std::uint32_t{1} << kIndexBits) - 1;
-  static constexpr std::size_t kPageBytes = std::size_t{1} << 16;
+  static constexpr std::size_t kPageBytes = std::size_t{1} << 12;  // small: a sparse map pays little per size class
 
   struct Pool {
     std::size_t block_bytes = 0;
