@@ -12,38 +12,30 @@
 namespace eco {
 namespace {
 
-struct Candidate {
-  double sq_dist;
-  std::array<float, 3> p;
-  bool operator<(const Candidate& o) const { return sq_dist < o.sq_dist; }
-};
-
+/// Searches into the caller's buffer (no allocation per query): `out` keeps the best so far,
+/// nearest first, their points in the anchor frame until the search ends.
 class KnnSearch {
  public:
-  KnnSearch(const detail::Tree& t, const std::array<double, 3>& q, std::size_t k) : t_(t), q_(q), k_(k) {
-    heap_.reserve(k);
-  }
+  KnnSearch(const detail::Tree& t, const std::array<double, 3>& q, std::span<Neighbor> out)
+      : t_(t), q_(q), out_(out) {}
 
-  std::vector<Candidate>& run() {
-    if (k_ > 0 && t_.root != detail::kNone) visit(t_.root);
-    std::sort_heap(heap_.begin(), heap_.end());
-    return heap_;
+  /// The number found: min(k, points held).
+  std::size_t run() {
+    if (!out_.empty() && t_.root != detail::kNone) visit(t_.root);
+    return found_;
   }
 
  private:
-  [[nodiscard]] double worst() const {
-    return heap_.size() < k_ ? std::numeric_limits<double>::infinity() : heap_.front().sq_dist;
-  }
+  [[nodiscard]] double worst() const { return worst_; }
 
+  /// Inserts in order: a shift of the farther ones, cheaper than a heap for the small k of
+  /// registration (nanoflann's result sets do the same).
   void offer(double d2, const std::array<float, 3>& p) {
-    if (heap_.size() < k_) {
-      heap_.push_back({d2, p});
-      std::push_heap(heap_.begin(), heap_.end());
-    } else if (d2 < heap_.front().sq_dist) {
-      std::pop_heap(heap_.begin(), heap_.end());
-      heap_.back() = {d2, p};
-      std::push_heap(heap_.begin(), heap_.end());
-    }
+    if (found_ < out_.size()) ++found_;
+    std::size_t i = found_ - 1;
+    for (; i > 0 && out_[i - 1].sq_dist > d2; --i) out_[i] = out_[i - 1];
+    out_[i] = {Eigen::Vector3d(p[0], p[1], p[2]), d2};
+    if (found_ == out_.size()) worst_ = out_[found_ - 1].sq_dist;
   }
 
   void visit(std::uint32_t id) {
@@ -80,8 +72,9 @@ class KnnSearch {
 
   const detail::Tree& t_;
   std::array<double, 3> q_;
-  std::size_t k_;
-  std::vector<Candidate> heap_;
+  std::span<Neighbor> out_;
+  std::size_t found_ = 0;
+  double worst_ = std::numeric_limits<double>::infinity();  // the k-th distance once k are found
 };
 
 }  // namespace
@@ -90,12 +83,11 @@ namespace detail {
 
 std::size_t knn_query(const Tree& t, const Eigen::Vector3d& query, std::span<Neighbor> out, Frame frame) {
   require_finite(query, "knn", "query");
-  KnnSearch search(t, to_anchor_frame(t, query, frame), out.size());
-  const std::vector<Candidate>& found = search.run();
-  for (std::size_t i = 0; i < found.size(); ++i) {
-    out[i] = {from_stored(t, found[i].p, frame), found[i].sq_dist};
+  const std::size_t found = KnnSearch(t, to_anchor_frame(t, query, frame), out).run();
+  for (Neighbor& n : out.first(found)) {  // stored floats, held exactly in double until now
+    n.point = from_stored(t, {float(n.point[0]), float(n.point[1]), float(n.point[2])}, frame);
   }
-  return found.size();
+  return found;
 }
 
 }  // namespace detail
