@@ -1,4 +1,5 @@
 #include <eco/config.hpp>
+#include <eco/config_fields.hpp>
 
 #include <cmath>
 #include <sstream>
@@ -40,21 +41,8 @@ int Config::max_depth() const {
 }
 
 void Config::validate() const {
-  if (!std::isfinite(box_side) || box_side <= 0.0) reject("box_side", box_side, "must be finite and > 0 m");
-  if (box_side > 1e5) reject("box_side", box_side, "must be at most 1e5 m");
-  if (leaf_capacity == 0) reject("leaf_capacity", leaf_capacity, "must be at least 1");
-  if (!std::isfinite(min_cell_size) || min_cell_size <= 0.0) {
-    reject("min_cell_size", min_cell_size, "must be finite and > 0 m");
-  }
-  if (recentring == Recentring::Quantised && (quantum_levels < 1 || quantum_levels > 5)) {
-    reject("quantum_levels", quantum_levels, "must be in 1..5");
-  }
-  if (recentring != Recentring::Quantised && recentring != Recentring::Exact) {
-    reject("recentring", double(recentring), "is not a Recentring value");
-  }
-  if (insert_policy != InsertPolicy::ShiftInOnly && insert_policy != InsertPolicy::AllInBox) {
-    reject("insert_policy", double(insert_policy), "is not an InsertPolicy value");
-  }
+  for (const ConfigField& f : config_fields()) f.check(f.get(*this));  // each field's own range
+  // rules that tie fields together
   if (min_cell_size > root_side()) {
     reject("min_cell_size", min_cell_size, "must not exceed the root cell side");
   }
@@ -67,21 +55,14 @@ void Config::validate() const {
     reject("min_cell_size", min_cell_size,
            "is too small for box_side: more than 24 levels below the root");
   }
-  if (!std::isfinite(voxel_size) || voxel_size < 0.0 || voxel_size > box_side) {
-    reject("voxel_size", voxel_size, "must be finite, >= 0 m (0 = no alignment) and at most box_side");
-  }
+  if (voxel_size > box_side) reject("voxel_size", voxel_size, "must be at most box_side");
   if (density_cap.enabled()) {
     const double cell = density_cap.cell_size;
-    if (!std::isfinite(cell) || cell <= 0.0) {
-      reject("density_cap.cell_size", cell, "must be finite and > 0 m while density_cap.max_points > 0");
-    }
+    if (cell <= 0.0) reject("density_cap.cell_size", cell, "must be > 0 m while density_cap.max_points > 0");
     if (cell > box_side) reject("density_cap.cell_size", cell, "must not exceed box_side");
     // held points span at most box_side / cell + 2 cells per axis: CellCounts names them mod 2^18
     if (box_side / cell > double((1u << 18) - 2u)) {
       reject("density_cap.cell_size", cell, "must be at least box_side / 262142 (the cell counts' reach)");
-    }
-    if (density_cap.max_points > 1023) {
-      reject("density_cap.max_points", density_cap.max_points, "must be at most 1023");
     }
   }
 }

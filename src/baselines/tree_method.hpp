@@ -1,6 +1,6 @@
 #pragma once
 // The octree baselines keep their points in the same detail::Tree as ECO (node layout, leaf
-// chunks, insertion, splitting) and answer queries with the same code (src/query); only their
+// blocks, insertion, splitting) and answer queries with the same code (src/query); only their
 // update strategy differs. This base class provides everything but update().
 
 #include "core/tree.hpp"

@@ -17,7 +17,7 @@ struct Node {
   Aabb bounds;                   // tight bounds of every point below
   std::uint32_t count = 0;       // points below
   std::uint32_t parent = kNone;
-  std::uint32_t link = kNone;    // leaf: head point chunk; inner: child block
+  std::uint32_t link = kNone;    // leaf: its point block (PointStore); inner: child block
   std::uint32_t oldest = kNone;  // smallest insertion stamp below (age limit); kNone if empty
   std::uint8_t depth = 0;
   std::uint8_t octant = 0;       // which child of its parent

@@ -1,0 +1,170 @@
+#include <eco/config_fields.hpp>
+
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace eco {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMaxCount = 4294967295.0;  // std::uint32_t
+
+constexpr std::array<std::string_view, 2> kRecentring{"Quantised", "Exact"};
+constexpr std::array<std::string_view, 2> kInsertPolicy{"ShiftInOnly", "AllInBox"};
+
+// One accessor pair per field: the value as a double (a count or an enum's index are exact).
+#define ECO_FIELD_ACCESS(member, type)                                  \
+  [](const Config& c) { return double(c.member); },                      \
+  [](Config& c, double v) { c.member = type(v); }
+
+const std::array<ConfigField, 10> kFields{{
+    {"box_side", ConfigField::Kind::Real, "m", "L: side of the ego cube held around the sensor; typical 10-100",
+     0.0, 1e5, true, {}, ECO_FIELD_ACCESS(box_side, double)},
+    {"leaf_capacity", ConfigField::Kind::Count, "points", "N_max: a leaf with more points splits; typical 8-64",
+     1.0, kMaxCount, false, {}, ECO_FIELD_ACCESS(leaf_capacity, std::uint32_t)},
+    {"min_cell_size", ConfigField::Kind::Real, "m", "cells are never split below this side; typical 0.01-0.5",
+     0.0, kInf, true, {}, ECO_FIELD_ACCESS(min_cell_size, double)},
+    {"recentring", ConfigField::Kind::Choice, "",
+     "how the root follows the sensor: Quantised (whole quanta; re-links the top levels) or Exact (the "
+     "paper's: re-centred every frame)",
+     0.0, 1.0, false, kRecentring, ECO_FIELD_ACCESS(recentring, Recentring)},
+    {"quantum_levels", ConfigField::Kind::Count, "",
+     "k, Quantised only: the quantum is q = box_side / (2^k - 1)", 1.0, 5.0, false, {},
+     ECO_FIELD_ACCESS(quantum_levels, std::uint32_t)},
+    {"insert_policy", ConfigField::Kind::Choice, "",
+     "scan points an update inserts: AllInBox (every point in the box: raw scans) or ShiftInOnly (the "
+     "paper's: only the newly entered region)",
+     0.0, 1.0, false, kInsertPolicy, ECO_FIELD_ACCESS(insert_policy, InsertPolicy)},
+    {"density_cap.cell_size", ConfigField::Kind::Real, "m",
+     "side of the density cap's world-aligned cell; > 0 while the cap is on, at least box_side / 262142 "
+     "and at most box_side",
+     0.0, 1e5, false, {}, ECO_FIELD_ACCESS(density_cap.cell_size, double)},
+    {"density_cap.max_points", ConfigField::Kind::Count, "points",
+     "points kept per density cell; 0 = cap off, typical 1-10", 0.0, 1023.0, false, {},
+     ECO_FIELD_ACCESS(density_cap.max_points, std::uint32_t)},
+    {"max_age_frames", ConfigField::Kind::Count, "frames", "drop points inserted more than this many frames ago; 0 = off",
+     0.0, kMaxCount, false, {}, ECO_FIELD_ACCESS(max_age_frames, std::uint32_t)},
+    {"voxel_size", ConfigField::Kind::Real, "m",
+     "Quantised only: the voxel size voxel maps are asked at (cells become voxels of voxel_size * 2^i); "
+     "0 = the paper's quantum; at most box_side",
+     0.0, 1e5, false, {}, ECO_FIELD_ACCESS(voxel_size, double)},
+}};
+
+#undef ECO_FIELD_ACCESS
+
+std::string number_text(double v) {
+  std::array<char, 32> buffer{};
+  const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
+  return error == std::errc() ? std::string(buffer.data(), end) : std::to_string(v);
+}
+
+[[noreturn]] void reject(std::string_view name, std::string_view value, std::string_view rule) {
+  std::ostringstream msg;
+  msg << "eco::Config: " << name << " = " << value << " is invalid: " << rule;
+  throw std::invalid_argument(msg.str());
+}
+
+bool same_ignoring_case(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) return false;
+  }
+  return true;
+}
+
+/// A value as the errors show it, the way C++ streams print it: "nan", "1e-05", "7".
+std::string value_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::string ConfigField::range() const {
+  switch (kind) {
+    case Kind::Choice: {
+      std::string out;
+      for (const std::string_view c : choices) out += (out.empty() ? "" : " | ") + std::string(c);
+      return out;
+    }
+    case Kind::Count:
+      return number_text(lo) + ".." + number_text(hi);
+    case Kind::Real: {
+      std::ostringstream s;
+      if (hi == kInf) {
+        s << (lo_open ? "> " : ">= ") << number_text(lo);
+      } else {
+        s << (lo_open ? "(" : "[") << number_text(lo) << ", " << number_text(hi) << "]";
+      }
+      return s.str();
+    }
+  }
+  return {};
+}
+
+std::string ConfigField::format(const Config& config) const {
+  const double v = get(config);
+  if (kind == Kind::Choice) {
+    const auto i = std::size_t(v);
+    return v >= 0.0 && i < choices.size() ? std::string(choices[i]) : number_text(v);
+  }
+  return number_text(v);
+}
+
+void ConfigField::check(double v) const {
+  if (kind == Kind::Choice) {
+    if (!(v >= 0.0 && v < double(choices.size()) && v == std::floor(v))) {
+      reject(name, value_text(v), "is not one of " + range());
+    }
+    return;
+  }
+  const bool below = lo_open ? !(v > lo) : !(v >= lo);
+  if (!std::isfinite(v) || below || v > hi || (kind == Kind::Count && v != std::floor(v))) {
+    std::ostringstream rule;
+    rule << (kind == Kind::Count ? "must be a whole number in " : "must be finite and in ") << range();
+    if (!unit.empty() && kind == Kind::Real) rule << ' ' << unit;
+    reject(name, value_text(v), rule.str());
+  }
+}
+
+void ConfigField::parse(Config& config, std::string_view text) const {
+  std::ostringstream quoted;
+  quoted << '"' << text << '"';
+  const std::string shown = quoted.str();
+  if (kind == Kind::Choice) {
+    for (std::size_t i = 0; i < choices.size(); ++i) {
+      if (same_ignoring_case(text, choices[i])) {
+        set(config, double(i));
+        return;
+      }
+    }
+    reject(name, shown, "is not one of " + range());
+  }
+  double v = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [at, error] = std::from_chars(text.data(), end, v);
+  if (text.empty() || error != std::errc() || at != end) {
+    reject(name, shown, kind == Kind::Count ? "is not a whole number" : "is not a number");
+  }
+  check(v);
+  set(config, v);
+}
+
+std::span<const ConfigField> config_fields() { return kFields; }
+
+const ConfigField& config_field(std::string_view name) {
+  std::string known;
+  for (const ConfigField& f : kFields) {
+    if (f.name == name) return f;
+    known += (known.empty() ? "" : ", ") + std::string(f.name);
+  }
+  throw std::invalid_argument("eco::Config has no field \"" + std::string(name) + "\" (fields: " + known + ")");
+}
+
+}  // namespace eco
