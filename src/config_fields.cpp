@@ -77,12 +77,8 @@ bool same_ignoring_case(std::string_view a, std::string_view b) {
   return true;
 }
 
-/// A value as the errors show it, the way C++ streams print it: "nan", "1e-05", "7".
-std::string value_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
+/// A value as the errors show it: the shortest text that reads back the same ("nan", "1e-05", "7").
+std::string value_text(double v) { return number_text(v); }
 
 }  // namespace
 

@@ -3,49 +3,83 @@
 #include "bindings.hpp"
 #include "config_record.hpp"
 
+#include <eco/config_fields.hpp>
 #include <eco/types.hpp>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace eco::python {
 
+using namespace pybind11::literals;
+
+namespace {
+
+/// A field's line in the table (include/eco/config_fields.hpp), with its range, unit and default.
+std::string doc_of(std::string_view name) {
+  const ConfigField& f = config_field(name);
+  return std::string(f.doc) + " [" + f.range() + (f.unit.empty() ? "" : " " + std::string(f.unit)) +
+         "; default " + f.default_text() + "]";
+}
+
+/// The table, for Python: one dict per field.
+py::list config_fields_list() {
+  py::list out;
+  for (const ConfigField& f : config_fields()) {
+    const char* kind = f.kind == ConfigField::Kind::Real ? "real" : f.kind == ConfigField::Kind::Count ? "count" : "choice";
+    py::list choices;
+    for (const std::string_view c : f.choices) choices.append(std::string(c));
+    out.append(py::dict("name"_a = std::string(f.name), "kind"_a = kind, "unit"_a = std::string(f.unit),
+                        "doc"_a = std::string(f.doc), "range"_a = f.range(), "lo"_a = f.lo, "hi"_a = f.hi,
+                        "lo_open"_a = f.lo_open, "choices"_a = choices, "default"_a = f.default_text()));
+  }
+  return out;
+}
+
+}  // namespace
+
+// The records list the fields by member (for their C++ types); names and docs come from the table,
+// and bind_config() checks that the two list the same fields.
 std::vector<Field<DensityCap>> Record<DensityCap>::fields() {
   return {
-      field("cell_size", &DensityCap::cell_size,
-            "[m] side of the density cell; typical 0.05-0.5; in (box_side / 262142, box_side] "
-            "when the cap is on."),
-      field("max_points", &DensityCap::max_points,
-            "points per cell; 0 = cap off, typical 1-10, at most 1023."),
+      field("cell_size", &DensityCap::cell_size, doc_of("density_cap.cell_size")),
+      field("max_points", &DensityCap::max_points, doc_of("density_cap.max_points")),
   };
 }
 
 std::vector<Field<Config>> Record<Config>::fields() {
   return {
-      field("box_side", &Config::box_side,
-            "L [m]: side of the ego cube held around the sensor; typical 10-100."),
-      field("leaf_capacity", &Config::leaf_capacity,
-            "N_max: a leaf with more points splits; typical 8-64."),
-      field("min_cell_size", &Config::min_cell_size,
-            "[m] cells are never split below this side; typical 0.01-0.5."),
-      field("recentring", &Config::recentring,
-            "Recentring.Quantised (default: the root moves in whole quanta) or "
-            "Recentring.Exact (the paper's: re-centred on the sensor every frame)."),
-      field("quantum_levels", &Config::quantum_levels,
-            "k, Quantised only: quantum q = L / (2^k - 1); range 1-5."),
-      field("insert_policy", &Config::insert_policy,
-            "InsertPolicy.AllInBox (default: every scan point in the box, for raw scans) or "
-            "InsertPolicy.ShiftInOnly (the paper's: only points in the newly entered region)."),
-      field("density_cap", &Config::density_cap,
-            "DensityCap: at most max_points points per world-aligned cell of side cell_size; "
-            "off by default."),
-      field("max_age_frames", &Config::max_age_frames,
-            "drop points inserted more than this many frames ago; 0 = off."),
-      field("voxel_size", &Config::voxel_size,
-            "[m] Quantised only: the voxel size voxel maps will be asked at; the quantum is "
-            "rounded up to voxel_size * 2^j so voxel_keys(voxel_size * 2^i) walks nodes, not "
-            "points. 0 = the paper's quantum L / (2^k - 1)."),
+      field("box_side", &Config::box_side, doc_of("box_side")),
+      field("leaf_capacity", &Config::leaf_capacity, doc_of("leaf_capacity")),
+      field("min_cell_size", &Config::min_cell_size, doc_of("min_cell_size")),
+      field("recentring", &Config::recentring, doc_of("recentring")),
+      field("quantum_levels", &Config::quantum_levels, doc_of("quantum_levels")),
+      field("insert_policy", &Config::insert_policy, doc_of("insert_policy")),
+      field("density_cap", &Config::density_cap, "DensityCap: at most max_points points per world-aligned cell of side "
+                                                  "cell_size; off by default."),
+      field("max_age_frames", &Config::max_age_frames, doc_of("max_age_frames")),
+      field("voxel_size", &Config::voxel_size, doc_of("voxel_size")),
   };
 }
 
 void bind_config(py::module_& m) {
+  {  // the records and the table must list the same fields, in the same order
+    std::vector<std::string> listed;
+    for (const Field<Config>& f : Record<Config>::fields()) {
+      if (f.name != "density_cap") listed.push_back(f.name);
+      if (f.name == "density_cap") {
+        for (const Field<DensityCap>& g : Record<DensityCap>::fields()) listed.push_back("density_cap." + g.name);
+      }
+    }
+    std::vector<std::string> table;
+    for (const ConfigField& f : config_fields()) table.emplace_back(f.name);
+    if (listed != table) throw std::logic_error("eco.Config's fields differ from include/eco/config_fields.hpp");
+  }
+  m.def("config_fields", &config_fields_list,
+        "The table of Config's fields (as C++, the eco command and config.json use it): one dict per field "
+        "with name (dotted for density_cap's), kind ('real', 'count' or 'choice'), unit, doc, range, lo, hi, "
+        "lo_open, choices and default.");
   py::enum_<Recentring>(m, "Recentring", "How the root cell follows the sensor.")
       .value("Quantised", Recentring::Quantised,
              "The root moves in whole quanta q = L / (2^k - 1); re-centring re-links the top k "

@@ -167,7 +167,7 @@ std::string repr_of(const T& value) {
 
 /// The field `name` of S, held in `member`.
 template <class S, class T>
-Field<S> field(const char* name, T S::*member, const char* doc) {
+Field<S> field(const char* name, T S::*member, const std::string& doc) {
   Field<S> f;
   f.name = name;
   f.doc = doc;

@@ -175,7 +175,7 @@ def test_bad_radius_box_resolution_and_frame(tree):
     ({"box_side": -1.0}, ValueError, ["box_side", "-1"]),
     ({"box_side": float("nan")}, ValueError, ["box_side"]),
     ({"box_side": "20"}, TypeError, ["box_side must be a number", "str"]),
-    ({"leaf_capacity": 0}, ValueError, ["leaf_capacity", "at least 1"]),
+    ({"leaf_capacity": 0}, ValueError, ["leaf_capacity", "1..4294967295"]),
     ({"leaf_capacity": -3}, ValueError, ["leaf_capacity = -3", ">= 0"]),
     ({"leaf_capacity": 2 ** 40}, ValueError, ["leaf_capacity", "out of range"]),
     ({"leaf_capacity": 2 ** 70}, ValueError, ["leaf_capacity", "out of range"]),

@@ -140,3 +140,65 @@ def test_everything_public_has_a_docstring(module):
     for name, value in public_members(module):
         assert (inspect.getdoc(value) or "").strip(), f"{name} has no docstring"
     assert module.__doc__.strip()
+
+
+# --- the field table (include/eco/config_fields.hpp), as C++, the eco command and config.json use it
+
+def _kwargs(name, value):
+    """Config keyword arguments setting one table field (dotted names are nested records)."""
+    if "." in name:
+        record, field = name.split(".")
+        return {record: {field: value}}
+    return {name: value}
+
+
+def _bad_values(field):
+    """Values the field must refuse, from its kind and range alone (as tests/bench/config_surfaces_test.cpp)."""
+    if field["kind"] == "choice":
+        return ["Sideways", ""]
+    lo, hi = field["lo"], field["hi"]
+    if field["kind"] == "count":
+        out = [int(lo) - 1, "3"]
+        if hi != float("inf"):
+            out.append(int(hi) * 2 + 1)
+        return out
+    out = [float("nan"), float("inf"), lo if field["lo_open"] else lo - 1, "abc"]
+    if hi != float("inf"):
+        out.append(hi * 2 + 1)
+    return out
+
+
+def test_the_table_lists_the_python_fields_with_their_docs():
+    table = eco.config_fields()
+    flat = []
+    for name, value in eco.Config().to_dict().items():
+        flat += [f"{name}.{k}" for k in value] if isinstance(value, dict) else [name]
+    assert [f["name"] for f in table] == flat
+    for f in table:
+        attribute = getattr(eco.DensityCap, f["name"].split(".")[1]) if "." in f["name"] else getattr(eco.Config, f["name"])
+        assert f["doc"] in attribute.__doc__ and f["range"] in attribute.__doc__, f["name"]
+        assert f["kind"] in ("real", "count", "choice")
+
+
+def test_every_field_takes_its_default_text_and_refuses_what_cpp_refuses():
+    for f in eco.config_fields():
+        if f["kind"] == "choice":
+            default = f["default"]
+        elif f["kind"] == "count":
+            default = int(f["default"])
+        else:
+            default = float(f["default"])
+        eco.Config(**_kwargs(f["name"], default))  # taken
+        for bad in _bad_values(f):
+            with pytest.raises((TypeError, ValueError)) as error:
+                eco.Config(**_kwargs(f["name"], bad))
+            assert f["name"] in str(error.value), (f["name"], bad, str(error.value))
+
+
+def test_a_config_json_section_is_a_config():
+    """config.json's "config" (what every eco command writes) has Config's shape and spellings."""
+    written = {"box_side": 18.0, "leaf_capacity": 32, "min_cell_size": 0.05, "recentring": "Quantised",
+               "quantum_levels": 3, "insert_policy": "AllInBox",
+               "density_cap": {"cell_size": 0.2, "max_points": 1}, "max_age_frames": 0, "voxel_size": 0.2}
+    config = eco.Config(**json.loads(json.dumps(written)))
+    assert config.to_dict() == written

@@ -1,5 +1,7 @@
 #include "bench/report.hpp"
 
+#include "bench/config_json.hpp"
+
 #include "bench/machine.hpp"
 #include "bench/svg_plot.hpp"
 
@@ -43,37 +45,39 @@ std::string now_utc() {
   return buffer;
 }
 
-json config_json(const Config& c) {
-  return {{"box_side", c.box_side},
-          {"leaf_capacity", c.leaf_capacity},
-          {"min_cell_size", c.min_cell_size},
-          {"recentring", c.recentring == Recentring::Quantised ? "quantised" : "exact"},
-          {"quantum_levels", c.quantum_levels},
-          {"insert_policy", c.insert_policy == InsertPolicy::ShiftInOnly ? "shift_in_only" : "all_in_box"},
-          {"density_cap", {{"cell_size", c.density_cap.cell_size}, {"max_points", c.density_cap.max_points}}},
-          {"max_age_frames", c.max_age_frames}};
+}  // namespace
+
+json bench_options_json(const BenchOptions& o) {
+  json out = {{"workload", to_string(o.workload)},
+              {"methods", o.methods},
+              {"frames", o.frames},
+              {"map-resolution", o.map_resolution},
+              {"voxel", o.voxel_resolution},
+              {"knn-queries", o.knn_queries},
+              {"k", o.knn_k},
+              {"seed", o.seed},
+              {"sim-frames", o.sim_frames},
+              {"check", o.check_every_frame}};
+  if (o.data) out["data"] = o.data->string();
+  return out;
 }
 
+namespace {
+
 json run_json(const BenchRun& run, const std::string& command_line) {
-  const BenchOptions& o = run.options;
   return {{"version", kVersion},
+          {"command_line", command_line},
           {"date", now_utc()},
           {"machine", describe_machine()},
-          {"command", command_line},
-          {"source", run.source},
-          {"workload", to_string(o.workload)},
-          {"frames", run.methods.empty() ? 0 : run.methods.front().frames.size()},
-          {"methods", o.methods},
-          {"map_resolution_m", o.map_resolution},
-          {"map_points", run.map_points},
-          {"voxel_resolution_m", o.voxel_resolution},
-          {"knn_queries", o.knn_queries},
-          {"knn_k", o.knn_k},
-          {"seed", o.seed},
-          {"seconds", run.seconds},
-          {"config", config_json(o.config)},
-          {"note", "eco_exact always runs with recentring = exact; octree_base and the i-Octree baselines "
-                   "place their roots themselves"}};
+          {"bench", bench_options_json(run.options)},
+          {"config", config_to_json(run.options.config)},
+          {"result",
+           {{"source", run.source},
+            {"frames_run", run.methods.empty() ? 0 : run.methods.front().frames.size()},
+            {"map_points", run.map_points},
+            {"seconds", run.seconds},
+            {"note", "eco_exact always runs with recentring = Exact; octree_base and the i-Octree baselines "
+                     "place their roots themselves"}}}};
 }
 
 std::string csv(const MethodRun& m) {

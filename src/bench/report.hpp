@@ -1,6 +1,8 @@
 #pragma once
 // The results folder of a benchmark run:
-//   config.json    the resolved options and tree configuration, version, machine, command
+//   config.json    what reproduces the run: the resolved options under "bench" (keyed by the flags
+//                  of `eco bench`), the tree's Config under "config", version, command line, machine,
+//                  and what the run found under "result"; `eco bench --config` reads it back
 //   <method>.csv   one row per frame
 //   summary.md     a table shaped like the paper's Table II, then depth, memory and ratios to ECO
 //   summary.json   per method: update_ms, voxel_ms, knn_ms (means), update_ms_p99, mean_depth,
@@ -9,6 +11,8 @@
 
 #include "bench/runner.hpp"
 #include "bench/summary.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <string>
@@ -19,6 +23,9 @@ namespace eco::bench {
 /// Creates `folder` (and parents) and writes every file above. Throws eco::io::Error naming the
 /// file that could not be written.
 void write_results(const std::filesystem::path& folder, const BenchRun& run, const std::string& command_line);
+
+/// The options of a run keyed by `eco bench`'s flags (without --out, --preset, --config).
+nlohmann::json bench_options_json(const BenchOptions& options);
 
 /// The Markdown tables of summary.md (without its heading), for the terminal as well.
 std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>& summaries);

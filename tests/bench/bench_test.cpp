@@ -215,7 +215,9 @@ TEST_P(ShortRun, AllMethodsHoldTheSamePointsAndTheResultsFolderIsComplete) {
   }
   const nlohmann::json config = nlohmann::json::parse(read(dir / "out/config.json"));
   EXPECT_EQ(config.at("config").at("leaf_capacity"), 8);
-  EXPECT_EQ(config.at("workload"), to_string(o.workload));
+  EXPECT_EQ(config.at("config").at("insert_policy"), "ShiftInOnly");
+  EXPECT_EQ(config.at("bench").at("workload"), to_string(o.workload));
+  EXPECT_EQ(config.at("bench").at("methods"), o.methods);
   const std::string md = read(dir / "out/summary.md");
   EXPECT_NE(md.find("| octree_base |"), std::string::npos);
   EXPECT_NE(md.find("Table II"), std::string::npos);

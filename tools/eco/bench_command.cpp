@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "config_options.hpp"
+#include "options_file.hpp"
 
 #include "bench/machine.hpp"
 #include "bench/progress_bar.hpp"
@@ -49,34 +50,26 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
                   "options given explicitly override it")
       ->check(CLI::IsMember({"paper", "robot", "robot-cap-0.2", "robot-cap-0.1"}))
       ->capture_default_str();
-  add_config_options(*cmd, o->config);
+  auto flags = std::make_shared<ConfigFlags>(*cmd, o->config);
+  auto file = std::make_shared<OptionsFile>(*cmd, "bench");
   cmd->footer(
       "Defaults are the paper's (--preset paper): L = 20 m, N_max = 8, ShiftInOnly. All methods see the same frames, one\n"
-      "frame at a time, on one core. The results folder gets config.json, <method>.csv, summary.md,\n"
-      "summary.json and update_ms.svg.\n"
+      "frame at a time, on one core. The results folder gets config.json (feed it back with --config to\n"
+      "repeat the run), <method>.csv, summary.md, summary.json and update_ms.svg.\n"
       "Examples:\n"
       "  eco bench --workload static --frames 100 --out results/static\n"
       "  eco bench --data ../shared/data/kitti_mini_00 --workload dynamic --out results/kitti00-dynamic\n"
       "  eco bench --workload dynamic --methods eco,nanoflann --knn-queries 5000 --k 10\n"
-      "  eco bench --data ../shared/data/kitti_mini_08 --preset robot-cap-0.2 --out results/kitti08-robot-cap");
-  return [o, data, preset, cmd, command_line] {
-    // the preset first; every option given on the command line then overrides it
+      "  eco bench --data ../shared/data/kitti_mini_08 --preset robot-cap-0.2 --out results/kitti08-robot-cap\n"
+      "  eco bench --config results/kitti08-robot-cap/config.json --out results/again");
+  return [o, data, preset, cmd, flags, file, command_line] {
+    file->load();  // a config.json's values, for the options not given here
+    // the preset first; every option given (on the command line or in the file) then overrides it
     const bench::BenchOptions given = *o;
     bench::apply_preset(*preset, *o);
-    auto keep = [&](const char* flag, auto& field, const auto& value) {
-      if (cmd->count(flag) > 0) field = value;
-    };
-    Config& c = o->config;
-    keep("--workload", o->workload, given.workload);
-    keep("--voxel", o->voxel_resolution, given.voxel_resolution);
-    keep("--box-side", c.box_side, given.config.box_side);
-    keep("--leaf-capacity", c.leaf_capacity, given.config.leaf_capacity);
-    keep("--min-cell", c.min_cell_size, given.config.min_cell_size);
-    keep("--quantum-levels", c.quantum_levels, given.config.quantum_levels);
-    keep("--policy", c.insert_policy, given.config.insert_policy);
-    keep("--density-cell", c.density_cap.cell_size, given.config.density_cap.cell_size);
-    keep("--density-max", c.density_cap.max_points, given.config.density_cap.max_points);
-    keep("--max-age", c.max_age_frames, given.config.max_age_frames);
+    if (cmd->count("--workload") > 0) o->workload = given.workload;
+    if (cmd->count("--voxel") > 0) o->voxel_resolution = given.voxel_resolution;
+    flags->apply(o->config);
     if (!data->empty()) o->data = *data;
     bench::pin_to_one_core();
     const bench::BenchRun run = bench::run_bench(*o, bench::terminal_progress());

@@ -11,8 +11,8 @@ namespace eco::cli {
 
 using Run = std::function<int()>;
 
-Run add_simulate(CLI::App& app);
+Run add_simulate(CLI::App& app, const std::string& command_line);
 Run add_bench(CLI::App& app, const std::string& command_line);
-Run add_run(CLI::App& app);
+Run add_run(CLI::App& app, const std::string& command_line);
 
 }  // namespace eco::cli

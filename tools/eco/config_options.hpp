@@ -1,32 +1,45 @@
 #pragma once
-// The tree configuration as command-line options, shared by `eco bench` and `eco run`.
+// The tree configuration on the command line: one flag per Config field, named after it
+// (--box_side, --density_cap.cell_size, --insert_policy AllInBox), from the field table, so the flags
+// take the same names and values as config.json and Python and refuse the same ones.
 
-#include <eco/config.hpp>
+#include <eco/config_fields.hpp>
 
 #include <CLI/CLI.hpp>
 
-#include <map>
 #include <string>
+#include <vector>
 
 namespace eco::cli {
 
-inline void add_config_options(CLI::App& cmd, Config& config) {
-  const std::map<std::string, InsertPolicy> policies{{"shift-in", InsertPolicy::ShiftInOnly},
-                                                      {"all-in-box", InsertPolicy::AllInBox}};
-  cmd.add_option("--box-side", config.box_side, "L: side of the ego cube [m]")->capture_default_str();
-  cmd.add_option("--leaf-capacity", config.leaf_capacity, "N_max: points a leaf holds before it splits")
-      ->capture_default_str();
-  cmd.add_option("--min-cell", config.min_cell_size, "smallest cell side [m]")->capture_default_str();
-  cmd.add_option("--quantum-levels", config.quantum_levels, "k of the quantised re-centring (1-5)")
-      ->capture_default_str();
-  cmd.add_option("--policy", config.insert_policy, "scan points inserted: shift-in (R_in only) or all-in-box")
-      ->transform(CLI::CheckedTransformer(policies, CLI::ignore_case))
-      ->capture_default_str();
-  cmd.add_option("--density-cell", config.density_cap.cell_size, "density cap cell side [m]")->capture_default_str();
-  cmd.add_option("--density-max", config.density_cap.max_points, "density cap: points per cell (0 = off)")
-      ->capture_default_str();
-  cmd.add_option("--max-age", config.max_age_frames, "drop points older than this many frames (0 = off)")
-      ->capture_default_str();
-}
+class ConfigFlags {
+ public:
+  /// Adds the flags to `cmd`; `defaults` is what the command uses when a flag is not given.
+  ConfigFlags(CLI::App& cmd, const Config& defaults) : texts_(config_fields().size()) {
+    std::size_t i = 0;
+    for (const ConfigField& f : config_fields()) {
+      std::string help = std::string(f.doc) + " [" + f.range() + (f.unit.empty() ? "" : " " + std::string(f.unit)) +
+                         "; default " + f.format(defaults) + "]";
+      const char* type = f.kind == ConfigField::Kind::Real ? "REAL" : f.kind == ConfigField::Kind::Count ? "UINT" : "NAME";
+      options_.push_back(
+          cmd.add_option("--" + std::string(f.name), texts_[i++], help)->type_name(type)->group("Tree configuration"));
+    }
+  }
+
+  /// Sets in `config` the fields whose flags were given, then validates it. Throws
+  /// std::invalid_argument naming the field and value.
+  void apply(Config& config) const {
+    std::size_t i = 0;
+    for (const ConfigField& f : config_fields()) {
+      if (options_[i]->count() > 0) f.parse(config, texts_[i]);
+      ++i;
+    }
+    config.validate();
+  }
+
+ private:
+  std::vector<std::string> texts_;
+  std::vector<CLI::Option*> options_;
+};
 
 }  // namespace eco::cli

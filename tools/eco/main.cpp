@@ -22,9 +22,9 @@ int main(int argc, char** argv) {
       "  eco bench --data data/sim --workload dynamic --methods eco,octree_base,nanoflann --out results/dyn\n"
       "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out run00\n"
       "Run 'eco <command> --help' for each command's options.");
-  const eco::cli::Run simulate = eco::cli::add_simulate(app);
+  const eco::cli::Run simulate = eco::cli::add_simulate(app, command_line);
   const eco::cli::Run bench = eco::cli::add_bench(app, command_line);
-  const eco::cli::Run run = eco::cli::add_run(app);
+  const eco::cli::Run run = eco::cli::add_run(app, command_line);
   CLI11_PARSE(app, argc, argv);
   try {
     if (app.got_subcommand("simulate")) return simulate();

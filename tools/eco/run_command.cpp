@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "config_options.hpp"
+#include "options_file.hpp"
 
 #include "bench/sim_workload.hpp"
 
@@ -25,7 +26,6 @@ struct RunOptions {
   std::size_t frames = 0;
   std::size_t export_every = 0;
   double voxel = 0.1;
-  bool exact = false;
   std::uint64_t seed = 1;
   Config config = raw_scan_config();
 
@@ -66,13 +66,12 @@ int run(const RunOptions& o) {
   } else {
     scans = std::make_unique<workloads::DynamicWorkload>(io::KittiSequence(o.data));
   }
-  Config config = o.config;
-  config.recentring = o.exact ? Recentring::Exact : Recentring::Quantised;
+  const Config& config = o.config;
   EgoOctree tree(config);
   const std::size_t total = o.frames > 0 ? std::min(o.frames, scans->size()) : scans->size();
   std::printf("%s, %zu frames, L = %.1f m, N_max = %u, %s re-centring\n",
               o.data.empty() ? "simulated drive" : o.data.c_str(), total, config.box_side, config.leaf_capacity,
-              o.exact ? "exact" : "quantised");
+              config.recentring == Recentring::Exact ? "exact" : "quantised");
   std::printf("%6s %8s %8s %8s %9s %8s %6s %6s %9s\n", "frame", "scan", "inserted", "pruned", "held", "nodes",
               "depth", "B/pt", "update ms");
   for (std::size_t t = 0; t < total; ++t) {
@@ -91,26 +90,40 @@ int run(const RunOptions& o) {
   return broken.empty() ? 0 : 1;
 }
 
+/// The options of a run keyed by `eco run`'s flags (without --out and --config).
+nlohmann::json run_options_json(const RunOptions& o) {
+  nlohmann::json out{{"frames", o.frames}, {"export-every", o.export_every}, {"voxel", o.voxel}, {"seed", o.seed}};
+  if (!o.data.empty()) out["data"] = o.data;
+  return out;
+}
+
 }  // namespace
 
-Run add_run(CLI::App& app) {
+Run add_run(CLI::App& app, const std::string& command_line) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Stream a sequence's scans through ECO, printing per-frame figures");
   cmd->add_option("--data", o->data, "KITTI-layout folder; default: a simulated drive")->check(CLI::ExistingDirectory);
   cmd->add_option("--frames", o->frames, "frames to run (0 = all; 100 for the simulator)")->capture_default_str();
   cmd->add_option("--export-every", o->export_every, "write held points and voxel map as PLY every K frames (0 = never)")
       ->capture_default_str();
-  cmd->add_option("--out", o->out, "folder for the PLY files")->capture_default_str();
+  cmd->add_option("--out", o->out, "folder for config.json and the PLY files")->capture_default_str();
   cmd->add_option("--voxel", o->voxel, "voxel map resolution [m]")->capture_default_str();
   cmd->add_option("--seed", o->seed, "the simulator's seed without --data")->capture_default_str();
-  cmd->add_flag("--exact", o->exact, "the paper's exact re-centring instead of the quantised one");
-  add_config_options(*cmd, o->config);
+  auto flags = std::make_shared<ConfigFlags>(*cmd, o->config);
+  auto file = std::make_shared<OptionsFile>(*cmd, "run");
   cmd->footer(
-      "Defaults suit raw scans: --policy all-in-box with a density cap of 2 points per 10 cm cell.\n"
+      "Defaults suit raw scans: --insert_policy AllInBox with a density cap of 2 points per 10 cm cell.\n"
+      "The output folder gets config.json (feed it back with --config to repeat the run).\n"
       "Examples:\n"
       "  eco run --frames 50\n"
-      "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out run00");
-  return [o] { return run(*o); };
+      "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out run00\n"
+      "  eco run --data ../shared/data/kitti_mini_00 --recentring Exact --density_cap.max_points 0");
+  return [o, flags, file, command_line] {
+    file->load();
+    flags->apply(o->config);
+    write_options_file(o->out, "run", command_line, run_options_json(*o), &o->config);
+    return run(*o);
+  };
 }
 
 }  // namespace eco::cli
