@@ -20,15 +20,15 @@ std::size_t EgoOctree::size() const {
 
 const UpdateStats& EgoOctree::last_update() const { return tree_->last; }
 const Config& EgoOctree::config() const { return tree_->cfg; }
-const Eigen::Isometry3d& EgoOctree::pose() const { return tree_->pose; }
-std::uint32_t EgoOctree::frame_count() const { return tree_->frame; }
-Eigen::Vector3d EgoOctree::precision_origin() const { return tree_->anchor; }
+const Eigen::Isometry3d& EgoOctree::pose() const { return tree_->pose(); }
+std::uint32_t EgoOctree::frame_count() const { return tree_->frame(); }
+Eigen::Vector3d EgoOctree::precision_origin() const { return tree_->anchor(); }
 
 Eigen::AlignedBox3d EgoOctree::ego_box() const {
-  if (tree_->frame == 0) return Eigen::AlignedBox3d();  // empty
-  const detail::Box& b = tree_->box;
-  return {Eigen::Vector3d(b.lo[0], b.lo[1], b.lo[2]) + tree_->anchor,
-          Eigen::Vector3d(b.hi[0], b.hi[1], b.hi[2]) + tree_->anchor};
+  if (tree_->frame() == 0) return Eigen::AlignedBox3d();  // empty
+  const detail::Box b = tree_->box();
+  const Eigen::Vector3d anchor = tree_->anchor();
+  return {Eigen::Vector3d(b.lo[0], b.lo[1], b.lo[2]) + anchor, Eigen::Vector3d(b.hi[0], b.hi[1], b.hi[2]) + anchor};
 }
 
 void EgoOctree::for_each_point(const std::function<void(const Eigen::Vector3d&)>& visit) const {
@@ -57,7 +57,7 @@ Stats tree_stats(const Tree& t) {
   s.points = t.root == kNone ? 0 : t.nodes[t.root].count;
   s.nodes = t.nodes.live();
   s.bytes = sizeof(Tree) + t.nodes.bytes() + t.points.bytes() + t.start.slots.capacity() * sizeof(std::uint32_t) +
-            (t.moving.capacity() + t.scratch.capacity() + t.batch_buffers.points.capacity()) * sizeof(StoredPoint) +
+            (t.scratch.capacity() + t.batch_buffers.scan.capacity() + t.batch_buffers.points.capacity()) * sizeof(StoredPoint) +
             t.density.bytes();
   if (t.root == kNone) return s;
   double depth_sum = 0.0;

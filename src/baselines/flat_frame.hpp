@@ -33,18 +33,9 @@ class FlatFrame {
   };
   Step advance(const Eigen::Isometry3d& world_T_sensor, const ScanView& scan) {
     detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, cfg_);
-    const Eigen::Vector3d position = world_T_sensor.translation();
-    const Eigen::Vector3d anchor = detail::precision_origin_for(position, anchor_, frames_ == 0);
-    Step step{std::nullopt, {world_T_sensor, anchor, detail::ego_box(position, anchor, cfg_.box_side), std::nullopt}};
-    if (anchor != anchor_ && frames_ > 0) step.shift = anchor_ - anchor;
-    if (cfg_.insert_policy == InsertPolicy::ShiftInOnly && frames_ > 0) {
-      step.admission.previous = detail::ego_box(pose_.translation(), anchor, cfg_.box_side);
-    }
-    anchor_ = anchor;
-    pose_ = world_T_sensor;
-    ++frames_;
-    if (step.shift) density_.clear();  // the caller counts the re-expressed points anew
-    return step;
+    motion_ = detail::next_motion(world_T_sensor, motion_, cfg_.box_side);  // ECO's stage 1
+    if (motion_->origin_shift) density_.clear();  // the caller counts the re-expressed points anew
+    return {motion_->origin_shift, detail::admission(*motion_, cfg_.insert_policy)};
   }
 
   /// The density cap's verdict on a new point (counted when admitted); true while the cap is off.
@@ -59,12 +50,12 @@ class FlatFrame {
     if (cfg_.density_cap.enabled()) density_.remove(key(p));
   }
 
-  [[nodiscard]] detail::Box box() const { return detail::ego_box(pose_.translation(), anchor_, cfg_.box_side); }
+  [[nodiscard]] detail::Box box() const { return motion_ ? motion_->box : detail::Box{}; }
   [[nodiscard]] std::array<double, 3> local(const Eigen::Vector3d& w) const {
-    return {w[0] - anchor_[0], w[1] - anchor_[1], w[2] - anchor_[2]};
+    return {w[0] - anchor()[0], w[1] - anchor()[1], w[2] - anchor()[2]};
   }
   [[nodiscard]] Eigen::Vector3d world(const std::array<float, 3>& p) const {
-    return {anchor_[0] + double(p[0]), anchor_[1] + double(p[1]), anchor_[2] + double(p[2])};
+    return {anchor()[0] + double(p[0]), anchor()[1] + double(p[1]), anchor()[2] + double(p[2])};
   }
   /// The closed query box [lo, hi] (world) in the anchor frame.
   [[nodiscard]] detail::Box closed_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
@@ -82,7 +73,7 @@ class FlatFrame {
   /// Empty when every point of `held` lies in the current ego box, else what is wrong.
   template <class Points>
   [[nodiscard]] std::string outside_box(const Points& held) const {
-    if (frames_ == 0) return "";
+    if (frames() == 0) return "";
     const detail::Box b = box();
     for (const auto& p : held) {
       if (!b.contains(p[0], p[1], p[2])) return "point outside the ego box";
@@ -90,14 +81,14 @@ class FlatFrame {
     return "";
   }
   [[nodiscard]] VoxelKey voxel(const std::array<float, 3>& p, double res) const {
-    return {detail::world_grid_index(anchor_[0], p[0], res), detail::world_grid_index(anchor_[1], p[1], res),
-            detail::world_grid_index(anchor_[2], p[2], res)};
+    return {detail::world_grid_index(anchor()[0], p[0], res), detail::world_grid_index(anchor()[1], p[1], res),
+            detail::world_grid_index(anchor()[2], p[2], res)};
   }
 
   /// Throws std::invalid_argument naming `resolution` unless voxels of that side can be indexed.
   void require_voxel_resolution(double res) const {
     // held points lie within 2048 m + L of the precision origin
-    const double reach = anchor_.cwiseAbs().maxCoeff() + 2048.0 + 2 * cfg_.box_side;
+    const double reach = anchor().cwiseAbs().maxCoeff() + 2048.0 + 2 * cfg_.box_side;
     if (!(res > 0.0) || !detail::grid_fits(reach, res)) {
       throw std::invalid_argument("voxel_keys: resolution = " + std::to_string(res) +
                                   " m must be > 0 and index points " + std::to_string(reach) +
@@ -106,9 +97,9 @@ class FlatFrame {
   }
 
   [[nodiscard]] const Config& config() const { return cfg_; }
-  [[nodiscard]] const Eigen::Isometry3d& pose() const { return pose_; }
-  [[nodiscard]] const Eigen::Vector3d& anchor() const { return anchor_; }
-  [[nodiscard]] std::size_t frames() const { return frames_; }
+  [[nodiscard]] const Eigen::Isometry3d& pose() const { return motion_ ? motion_->pose : kStart.pose; }
+  [[nodiscard]] const Eigen::Vector3d& anchor() const { return motion_ ? motion_->anchor : kStart.anchor; }
+  [[nodiscard]] std::size_t frames() const { return motion_ ? motion_->frame : 0; }
   [[nodiscard]] std::size_t bytes() const { return sizeof(*this) + density_.bytes(); }
 
  private:
@@ -117,10 +108,10 @@ class FlatFrame {
     return detail::CellCounts::key({v.x, v.y, v.z});
   }
 
+  inline static const detail::Motion kStart{};  // identity pose, zero origin: before the first frame
+
   Config cfg_;
-  Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d anchor_ = Eigen::Vector3d::Zero();
-  std::size_t frames_ = 0;
+  std::optional<detail::Motion> motion_;  // the current frame's, as ECO's stage 1 finds it
   detail::CellCounts density_;
 };
 

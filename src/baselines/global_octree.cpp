@@ -24,44 +24,37 @@ void GlobalOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan
   detail::Tree& t = tree_;
   t.last = UpdateStats{};
   t.last.scan_points = scan.count;
-  t.has_previous = t.frame > 0;
-  t.previous_position = t.pose.translation();
-  t.pose = world_T_sensor;
-  ++t.frame;
-  if (!t.has_previous) {  // the precision origin stays where the drive began, like the root
-    t.anchor = detail::precision_origin_for(world_T_sensor.translation(), t.anchor, true);
-  }
-  t.box = t.box_around(world_T_sensor.translation());
-  if (t.root == detail::kNone) place_first_root();
-  if (deletes_) detail::prune_shift_out(t);
-  grow_to_cover_box();
-  detail::insert_shift_in(t, scan);
+  // the precision origin stays where the drive began, like the root
+  const detail::Motion motion = detail::advance_ego_motion_fixed_origin(t, world_T_sensor);
+  if (t.root == detail::kNone) place_first_root(motion.box);
+  if (deletes_) detail::prune_shift_out(t, motion);
+  grow_to_cover(motion.box);
+  detail::insert_scan(t, motion, scan);  // from the root: the doubled roots sit off ECO's lattice
 }
 
-void GlobalOctree::place_first_root() {
+void GlobalOctree::place_first_root(const detail::Box& box) {
   detail::Tree& t = tree_;
   t.lattice.unit = std::ldexp(t.cfg.box_side, -t.lattice.max_depth);
-  t.lattice.origin = t.box.lo;
+  t.lattice.origin = box.lo;
   t.root_cell = detail::Cell{};
   t.make_root();
 }
 
-void GlobalOctree::grow_to_cover_box() {
+void GlobalOctree::grow_to_cover(const detail::Box& box) {
   const detail::Tree& t = tree_;
   auto covered = [&] {
     const std::int64_t side = t.lattice.side(0);
     for (int a = 0; a < 3; ++a) {
-      if (t.box.lo[a] < t.lattice.wall(a, t.root_cell.lo[a]) ||
-          t.box.hi[a] > t.lattice.wall(a, t.root_cell.lo[a] + side)) {
+      if (box.lo[a] < t.lattice.wall(a, t.root_cell.lo[a]) || box.hi[a] > t.lattice.wall(a, t.root_cell.lo[a] + side)) {
         return false;
       }
     }
     return true;
   };
-  while (!covered()) grow_once();
+  while (!covered()) grow_once(box);
 }
 
-void GlobalOctree::grow_once() {
+void GlobalOctree::grow_once(const detail::Box& box) {
   detail::Tree& t = tree_;
   const std::int64_t side = t.lattice.side(0);
   // Every level moves one down: depths are counted from the root.
@@ -79,7 +72,7 @@ void GlobalOctree::grow_once() {
   detail::Cell cell{t.root_cell.lo, 0};
   int octant = 0;
   for (int a = 0; a < 3; ++a) {
-    if (t.box.lo[a] < t.lattice.wall(a, t.root_cell.lo[a])) {
+    if (box.lo[a] < t.lattice.wall(a, t.root_cell.lo[a])) {
       cell.lo[a] -= side;
       octant |= 1 << a;
     }

@@ -17,10 +17,10 @@ class GlobalOctree : public TreeMethod {
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override;
 
  private:
-  void place_first_root();
-  /// Doubles the root until its cell holds the whole current box.
-  void grow_to_cover_box();
-  void grow_once();
+  void place_first_root(const detail::Box& box);
+  /// Doubles the root until its cell holds the whole of `box`.
+  void grow_to_cover(const detail::Box& box);
+  void grow_once(const detail::Box& box);
 
   bool deletes_;
 };

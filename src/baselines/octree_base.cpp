@@ -25,18 +25,17 @@ class OctreeBase final : public TreeMethod {
     detail::Tree& t = tree_;
     t.last = UpdateStats{};
     t.last.scan_points = scan.count;
-    detail::advance_ego_motion(t, world_T_sensor);  // may move every point to t.moving (rebase)
-    held_.clear();
-    held_.swap(t.moving);
+    auto [motion, displaced] = detail::advance_ego_motion(t, world_T_sensor);  // a moved origin hands back all
+    held_.assign(displaced.begin(), displaced.end());
     if (t.root != detail::kNone) {
       t.dissolve(t.root, &held_);
       t.root = detail::kNone;
     }
-    detail::refine_overlap(t);  // a new, empty root on the box
-    t.rebuild_start_table(0);
-    std::erase_if(held_, [&](const detail::StoredPoint& s) { return !t.keeps(s); });
-    t.insert_batch(held_);
-    detail::insert_shift_in(t, scan);
+    held_ = detail::refine_overlap(t, motion, std::move(held_));  // a new, empty root on the box
+    std::erase_if(held_, [&](const detail::StoredPoint& s) { return !t.keeps(s, motion.box); });
+    t.rebuild_start_table(0);  // the paper's: every point from the root
+    detail::reinsert(t, held_);
+    detail::insert_scan(t, motion, scan);
   }
 
  private:

@@ -42,10 +42,10 @@ class TreeMethod : public Method {
     return tree_.root == detail::kNone ? 0 : tree_.nodes[tree_.root].count;
   }
   [[nodiscard]] Stats stats() const override { return detail::tree_stats(tree_); }
-  [[nodiscard]] Eigen::Vector3d precision_origin() const override { return tree_.anchor; }
+  [[nodiscard]] Eigen::Vector3d precision_origin() const override { return tree_.anchor(); }
   [[nodiscard]] std::string check_invariants() const override { return detail::check_tree(tree_); }
   [[nodiscard]] const Config& config() const override { return tree_.cfg; }
-  [[nodiscard]] const Eigen::Isometry3d& pose() const override { return tree_.pose; }
+  [[nodiscard]] const Eigen::Isometry3d& pose() const override { return tree_.pose(); }
 
  protected:
   std::string name_;

@@ -12,10 +12,10 @@ namespace {
 
 class Checker {
  public:
-  explicit Checker(const detail::Tree& t) : t_(t) {}
+  explicit Checker(const detail::Tree& t) : t_(t), box_(t.box()) {}
 
   std::string run() {
-    if (t_.root == detail::kNone) return t_.frame == 0 ? "" : "no root after an update";
+    if (t_.root == detail::kNone) return t_.frame() == 0 ? "" : "no root after an update";
     if (t_.nodes[t_.root].parent != detail::kNone) fail(t_.root, "root has a parent");
     check(t_.root, t_.root_cell);
     if (t_.nodes.live() != seen_) fail(t_.root, "live node count differs from reachable nodes");
@@ -44,7 +44,7 @@ class Checker {
         bounds.grow(s.p[0], s.p[1], s.p[2]);
         oldest = std::min(oldest, s.stamp);
         if (!t_.lattice.contains(cell, s.p)) fail(id, "point outside its cell");
-        if (t_.bounded && !t_.box.contains(s.p[0], s.p[1], s.p[2])) fail(id, "point outside the ego box");
+        if (t_.bounded && !box_.contains(s.p[0], s.p[1], s.p[2])) fail(id, "point outside the ego box");
       });
     } else {
       bool any = false;
@@ -71,6 +71,7 @@ class Checker {
   }
 
   const detail::Tree& t_;
+  detail::Box box_;
   std::size_t seen_ = 0;
   std::ostringstream error_;
 };

@@ -11,17 +11,14 @@ Tree::Tree(const Config& config) : cfg(config), points(config.max_age_frames > 0
   lattice.max_depth = cfg.max_depth();
 }
 
-Box Tree::box_around(const Eigen::Vector3d& position) const {
-  return ego_box(position, anchor, cfg.box_side);
-}
-
 std::array<float, 3> Tree::to_stored(const Eigen::Vector3d& world) const {
-  return {float(world[0] - anchor[0]), float(world[1] - anchor[1]), float(world[2] - anchor[2])};
+  const Eigen::Vector3d o = anchor();
+  return {float(world[0] - o[0]), float(world[1] - o[1]), float(world[2] - o[2])};
 }
 
 Eigen::Vector3d Tree::to_world(const std::array<float, 3>& stored) const {
-  return {anchor[0] + double(stored[0]), anchor[1] + double(stored[1]),
-          anchor[2] + double(stored[2])};
+  const Eigen::Vector3d o = anchor();
+  return {o[0] + double(stored[0]), o[1] + double(stored[1]), o[2] + double(stored[2])};
 }
 
 void Tree::make_root() {

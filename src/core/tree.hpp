@@ -6,6 +6,7 @@
 #include "core/geometry.hpp"
 #include "core/node_store.hpp"
 #include "core/point_store.hpp"
+#include "update/motion.hpp"
 
 #include <eco/config.hpp>
 #include <eco/types.hpp>
@@ -13,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace eco::detail {
@@ -24,17 +26,6 @@ struct StartTable {
   std::int64_t per_axis = 1;
   std::vector<std::uint32_t> slots;
 };
-
-/// The ego box [p - L/2, p + L/2) around world position p, in the frame of precision origin
-/// `anchor`.
-inline Box ego_box(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor, double side) {
-  Box b;
-  for (int a = 0; a < 3; ++a) {
-    b.lo[a] = (position[a] - anchor[a]) - side / 2;
-    b.hi[a] = b.lo[a] + side;
-  }
-  return b;
-}
 
 struct Tree {
   explicit Tree(const Config& config);
@@ -48,32 +39,34 @@ struct Tree {
   int min_leaf_depth = 0;  // k in Quantised mode (the top k levels are always inner), else 0
   bool bounded = true;     // holds only points in the ego box (false: a global baseline's tree)
 
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d previous_position = Eigen::Vector3d::Zero();
-  bool has_previous = false;  // a box existed before this frame
-  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();  // the precision origin, world
-  Box box;  // the ego box, anchor frame
-  std::uint32_t frame = 0;
+  std::optional<Motion> motion;  // the current frame's (stage 1 sets it); none before the first
   UpdateStats last;
 
   StartTable start;
   CellCounts density;  // points per density-cap cell, kept while the cap is on
-  std::vector<StoredPoint> moving;  // points being re-inserted by the current stage
   std::vector<StoredPoint> scratch;  // points of a leaf being split or a subtree collapsed
-  struct BatchBuffers {  // insert_batch's, kept so that no frame pays for fresh pages
-    std::vector<StoredPoint> points;
+  struct BatchBuffers {  // insert_batch's and shift-in's, kept so that no frame pays for fresh pages
+    std::vector<StoredPoint> scan, points;
     std::vector<std::uint32_t> slot_of, group_start, group_end;
   } batch_buffers;
 
+  // --- the current frame ------------------------------------------------------------------
+  [[nodiscard]] const Eigen::Isometry3d& pose() const {
+    static const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
+    return motion ? motion->pose : identity;
+  }
+  [[nodiscard]] Eigen::Vector3d anchor() const { return motion ? motion->anchor : Eigen::Vector3d::Zero(); }
+  [[nodiscard]] Box box() const { return motion ? motion->box : Box{}; }
+  /// Frames taken in so far (the current frame's number).
+  [[nodiscard]] std::uint32_t frame() const { return motion ? motion->frame : 0; }
+
   // --- geometry -----------------------------------------------------------------------------
-  /// The ego box around world position p, in the current anchor frame.
-  [[nodiscard]] Box box_around(const Eigen::Vector3d& position) const;
   /// Anchor-frame float coordinates of a world point (the stored representation).
   [[nodiscard]] std::array<float, 3> to_stored(const Eigen::Vector3d& world) const;
   [[nodiscard]] Eigen::Vector3d to_world(const std::array<float, 3>& stored) const;
-  /// Whether held point `s` stays this frame: inside the box and within the age limit. Counts
-  /// what it drops in `last` (pruned takes precedence over aged).
-  bool keeps(const StoredPoint& s) {
+  /// Whether held point `s` stays: inside `box` and within the age limit. Counts what it drops
+  /// in `last` (pruned takes precedence over aged) and takes it out of the density counts.
+  bool keeps(const StoredPoint& s, const Box& box) {
     if (!box.contains(s.p[0], s.p[1], s.p[2])) {
       ++last.pruned;
       forget(s);
@@ -89,8 +82,9 @@ struct Tree {
   /// The density-cap cell of stored point p, as CellCounts names it.
   [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
     const double r = cfg.density_cap.cell_size;
-    return CellCounts::key({world_grid_index(anchor[0], p[0], r), world_grid_index(anchor[1], p[1], r),
-                            world_grid_index(anchor[2], p[2], r)});
+    const Eigen::Vector3d o = anchor();
+    return CellCounts::key({world_grid_index(o[0], p[0], r), world_grid_index(o[1], p[1], r),
+                            world_grid_index(o[2], p[2], r)});
   }
   /// Takes a point that leaves the tree out of the density counts.
   void forget(const StoredPoint& s) {
@@ -99,7 +93,7 @@ struct Tree {
   /// Points stamped before this frame are past the age limit (0 while no limit applies).
   [[nodiscard]] std::uint32_t age_cutoff() const {
     const std::uint32_t age = cfg.max_age_frames;
-    return age > 0 && frame > age ? frame - age : 0;
+    return age > 0 && frame() > age ? frame() - age : 0;
   }
 
   // --- structure ----------------------------------------------------------------------------

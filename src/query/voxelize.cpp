@@ -39,7 +39,7 @@ void require_representable(const Tree& t, double resolution) {
   const Aabb& b = t.nodes[t.root].bounds;
   double reach = 0.0;
   for (int a = 0; a < 3; ++a) {
-    reach = std::max({reach, std::abs(t.anchor[a] + double(b.lo[a])), std::abs(t.anchor[a] + double(b.hi[a]))});
+    reach = std::max({reach, std::abs(t.anchor()[a] + double(b.lo[a])), std::abs(t.anchor()[a] + double(b.hi[a]))});
   }
   if (!grid_fits(reach + 1.0, resolution)) {
     std::ostringstream s;
@@ -58,7 +58,7 @@ float float_at_or_above(double w) {
 class LatticeVoxels {
  public:
   LatticeVoxels(const Tree& t, double resolution, int shift, std::vector<VoxelKey>& out)
-      : t_(t), res_(resolution), shift_(shift), depth_(t.lattice.max_depth - shift), out_(out) {}
+      : t_(t), anchor_(t.anchor()), res_(resolution), shift_(shift), depth_(t.lattice.max_depth - shift), out_(out) {}
 
   void collect(std::uint32_t id, const Cell& cell) {
     const Node& n = t_.nodes[id];
@@ -122,8 +122,8 @@ class LatticeVoxels {
   void collect_sorted(const Node& n) {
     const std::size_t base = out_.size();
     t_.points.for_each(n.link, n.count, [&](const StoredPoint& s) {
-      const VoxelKey key{world_grid_index(t_.anchor[0], s.p[0], res_), world_grid_index(t_.anchor[1], s.p[1], res_),
-                         world_grid_index(t_.anchor[2], s.p[2], res_)};
+      const VoxelKey key{world_grid_index(anchor_[0], s.p[0], res_), world_grid_index(anchor_[1], s.p[1], res_),
+                         world_grid_index(anchor_[2], s.p[2], res_)};
       if (out_.size() == base || out_.back() != key) out_.push_back(key);
     });
     std::sort(out_.begin() + std::ptrdiff_t(base), out_.end());
@@ -131,6 +131,7 @@ class LatticeVoxels {
   }
 
   const Tree& t_;
+  Eigen::Vector3d anchor_;
   double res_;
   int shift_;
   int depth_;
@@ -149,7 +150,8 @@ std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution) {
     return keys;
   }
   keys.reserve(t.nodes[t.root].count);
-  auto index = [&](int a, float stored) { return world_grid_index(t.anchor[a], stored, resolution); };
+  const Eigen::Vector3d anchor = t.anchor();
+  auto index = [&](int a, float stored) { return world_grid_index(anchor[a], stored, resolution); };
   walk_leaves(
       t, t.root, [](const Aabb&) { return 2; },
       [&](const StoredPoint& s, bool) {
@@ -170,7 +172,7 @@ std::vector<VoxelKey> EgoOctree::voxel_keys(double resolution) const {
 std::vector<Eigen::Vector3d> EgoOctree::voxelize(double resolution, Frame frame) const {
   const std::vector<VoxelKey> keys = voxel_keys(resolution);
   const Eigen::Vector3d shift =
-      frame == Frame::Ego ? Eigen::Vector3d(tree_->pose.translation()) : Eigen::Vector3d::Zero();
+      frame == Frame::Ego ? Eigen::Vector3d(tree_->pose().translation()) : Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> centres;
   centres.reserve(keys.size());
   for (const VoxelKey& k : keys) {

@@ -4,7 +4,9 @@
 // every method of the benchmark takes in the same points.
 
 #include "core/geometry.hpp"
+#include "update/motion.hpp"
 
+#include <eco/config.hpp>
 #include <eco/types.hpp>
 
 #include <Eigen/Geometry>
@@ -79,5 +81,12 @@ struct Admission {
     }
   };
 };
+
+/// The scan points the insert policy admits for `motion`: R_in = Box(p_t) minus Box(p_{t-1})
+/// under ShiftInOnly once a previous box exists, all of Box(p_t) otherwise.
+inline Admission admission(const Motion& motion, InsertPolicy policy) {
+  return {motion.pose, motion.anchor, motion.box,
+          policy == InsertPolicy::ShiftInOnly ? motion.previous : std::nullopt};
+}
 
 }  // namespace eco::detail

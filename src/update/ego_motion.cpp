@@ -12,48 +12,61 @@ Eigen::Vector3d nearest_origin(const Eigen::Vector3d& position) {
   return (position / kOriginStep).array().round().matrix() * kOriginStep;
 }
 
-/// Moves the precision origin: every held point is re-expressed against the new origin (rounded
-/// once more to float) and set aside for re-insertion; points the rounding takes out of the box
-/// are pruned. Happens once per ~2 km travelled.
-void rebase(Tree& tree, const Eigen::Vector3d& new_anchor) {
-  const Eigen::Vector3d shift = tree.anchor - new_anchor;  // exact: multiples of kOriginStep
-  tree.anchor = new_anchor;
-  tree.box = tree.box_around(tree.pose.translation());
-  std::vector<StoredPoint> held;
-  tree.dissolve(tree.root, &held);
+/// Takes every held point out of the tree, re-expressed against the new origin (rounded once
+/// more to float); points the rounding takes out of the box are pruned.
+std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion) {
+  const Eigen::Vector3d shift = *motion.origin_shift;  // exact: multiples of kOriginStep
+  std::vector<StoredPoint> held, displaced;
+  if (tree.root != kNone) tree.dissolve(tree.root, &held);
   tree.root = kNone;
   tree.density.clear();  // cells are counted anew from the re-rounded points
   for (StoredPoint s : held) {
     for (int a = 0; a < 3; ++a) s.p[a] = float(double(s.p[a]) + shift[a]);
-    if (!tree.keeps(s)) continue;
-    tree.moving.push_back(s);
+    if (!tree.keeps(s, motion.box)) continue;
+    displaced.push_back(s);
     if (tree.cfg.density_cap.enabled()) tree.density.add(tree.density_key(s.p));
   }
   tree.last.rebased = true;
   tree.last.rebuilt_subtrees += 1;
+  return displaced;
 }
 
 }  // namespace
-
-void advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor) {
-  tree.has_previous = tree.frame > 0;
-  tree.previous_position = tree.pose.translation();
-  tree.pose = world_T_sensor;
-  ++tree.frame;
-  const Eigen::Vector3d position = world_T_sensor.translation();
-  const Eigen::Vector3d anchor = precision_origin_for(position, tree.anchor, !tree.has_previous);
-  if (!tree.has_previous) {
-    tree.anchor = anchor;
-  } else if (anchor != tree.anchor) {
-    rebase(tree, anchor);
-  }
-  tree.box = tree.box_around(position);
-}
 
 Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor,
                                      bool first) {
   if (first || (position - anchor).cwiseAbs().maxCoeff() > kOriginReach) return nearest_origin(position);
   return anchor;
+}
+
+Motion next_motion(const Eigen::Isometry3d& pose, const std::optional<Motion>& last, double box_side,
+                   bool moves_origin) {
+  Motion m;
+  m.pose = pose;
+  const Eigen::Vector3d position = pose.translation();
+  if (!last) {
+    m.anchor = precision_origin_for(position, Eigen::Vector3d::Zero(), true);
+  } else {
+    m.anchor = moves_origin ? precision_origin_for(position, last->anchor, false) : last->anchor;
+    if (m.anchor != last->anchor) m.origin_shift = last->anchor - m.anchor;
+    m.previous = ego_box(last->pose.translation(), m.anchor, box_side);
+    m.moved = (position - last->pose.translation()).norm();
+    m.frame = last->frame + 1;
+  }
+  m.box = ego_box(position, m.anchor, box_side);
+  return m;
+}
+
+EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor) {
+  EgoMotion out{next_motion(world_T_sensor, tree.motion, tree.cfg.box_side), {}};
+  tree.motion = out.motion;  // the density keys of the re-expressed points need the new origin
+  if (out.motion.origin_shift) out.displaced = rebase(tree, out.motion);
+  return out;
+}
+
+Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor) {
+  tree.motion = next_motion(world_T_sensor, tree.motion, tree.cfg.box_side, /*moves_origin=*/false);
+  return *tree.motion;
 }
 
 }  // namespace eco::detail

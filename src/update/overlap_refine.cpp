@@ -6,10 +6,8 @@
 namespace eco::detail {
 namespace {
 
-constexpr int kMaxStartDepth = 4;  // Exact mode: start table of at most 8^4 slots
-
 /// Where the root cell and the lattice go for the current pose.
-std::pair<Cell, Lattice> place_root(const Tree& t) {
+std::pair<Cell, Lattice> place_root(const Tree& t, const Motion& motion) {
   Lattice lattice = t.lattice;
   Cell cell;
   const int depth = lattice.max_depth;
@@ -18,33 +16,23 @@ std::pair<Cell, Lattice> place_root(const Tree& t) {
     const double q = t.cfg.quantum();
     lattice.unit = std::ldexp(q, k - depth);
     for (int a = 0; a < 3; ++a) {
-      lattice.origin[a] = -t.anchor[a];
-      const std::int64_t m = std::llround(t.pose.translation()[a] / q);
+      lattice.origin[a] = -motion.anchor[a];
+      const std::int64_t m = std::llround(motion.pose.translation()[a] / q);
       cell.lo[a] = (m - (std::int64_t{1} << (k - 1))) * (std::int64_t{1} << (depth - k));
     }
   } else {
     lattice.unit = std::ldexp(t.cfg.box_side, -depth);
-    lattice.origin = t.box.lo;
+    lattice.origin = motion.box.lo;
   }
   return {cell, lattice};
-}
-
-/// The paper's movement-aware start depth, d = min(d_max, max(0, floor(log2(L / |v|)))); in
-/// Quantised mode the lattice depth k, below which cells never move.
-int start_depth(const Tree& t) {
-  if (t.cfg.recentring == Recentring::Quantised) return int(t.cfg.quantum_levels);
-  const int cap = std::min(t.lattice.max_depth, kMaxStartDepth);
-  const double moved = (t.pose.translation() - t.previous_position).norm();
-  if (!t.has_previous || moved <= 0.0) return cap;
-  const double d = std::floor(std::log2(t.cfg.box_side / moved));
-  return d <= 0.0 ? 0 : std::min(cap, int(d));
 }
 
 // --- Quantised: re-link the depth-k subtrees ---------------------------------------------------
 
 class Relinker {
  public:
-  explicit Relinker(Tree& tree) : t_(tree), k_(int(tree.cfg.quantum_levels)) {}
+  Relinker(Tree& tree, std::vector<StoredPoint>& displaced)
+      : t_(tree), displaced_(displaced), k_(int(tree.cfg.quantum_levels)) {}
 
   void run(const Cell& new_root) {
     collect(t_.root, t_.root_cell);
@@ -55,7 +43,7 @@ class Relinker {
         attach(id, cell);
         ++t_.last.relinked_subtrees;
       } else {  // cannot hold points after shift-out; dissolved for safety all the same
-        t_.dissolve(id, &t_.moving);
+        t_.dissolve(id, &displaced_);
         ++t_.last.rebuilt_subtrees;
       }
     }
@@ -100,6 +88,7 @@ class Relinker {
   }
 
   Tree& t_;
+  std::vector<StoredPoint>& displaced_;
   int k_;
   std::vector<std::pair<std::uint32_t, Cell>> subtrees_;
 };
@@ -107,14 +96,14 @@ class Relinker {
 // --- Exact: keep what still fits, rebuild the rest ---------------------------------------------
 
 /// Node id fits `cell` under the new lattice; checks its children against their moved octants.
-void refit_exact(Tree& t, std::uint32_t id, const Cell& cell) {
+void refit_exact(Tree& t, std::uint32_t id, const Cell& cell, std::vector<StoredPoint>& displaced) {
   if (t.nodes[id].leaf) return;
   for (int o = 0; o < 8; ++o) {
     const std::uint32_t ch = t.nodes.child(id, o);
     if (ch == kNone) continue;
     const Cell child_cell = t.lattice.child(cell, o);
     if (t.lattice.contains(child_cell, t.nodes[ch].bounds)) {
-      refit_exact(t, ch, child_cell);
+      refit_exact(t, ch, child_cell, displaced);
       if (t.nodes[ch].count == 0) {  // everything below moved out of its octant
         t.dissolve(ch, nullptr);
         t.nodes.child(id, o) = kNone;
@@ -122,7 +111,7 @@ void refit_exact(Tree& t, std::uint32_t id, const Cell& cell) {
         ++t.last.relinked_subtrees;
       }
     } else {
-      t.dissolve(ch, &t.moving);
+      t.dissolve(ch, &displaced);
       t.nodes.child(id, o) = kNone;
       ++t.last.rebuilt_subtrees;
     }
@@ -133,22 +122,19 @@ void refit_exact(Tree& t, std::uint32_t id, const Cell& cell) {
 
 }  // namespace
 
-void refine_overlap(Tree& tree) {
-  const auto [new_root, lattice] = place_root(tree);
+std::vector<StoredPoint> refine_overlap(Tree& tree, const Motion& motion, std::vector<StoredPoint> displaced) {
+  const auto [new_root, lattice] = place_root(tree, motion);
   if (tree.root == kNone) {
     tree.lattice = lattice;
     tree.root_cell = new_root;
     tree.make_root();
   } else if (tree.cfg.recentring == Recentring::Quantised) {
-    if (new_root.lo != tree.root_cell.lo) Relinker(tree).run(new_root);
+    if (new_root.lo != tree.root_cell.lo) Relinker(tree, displaced).run(new_root);
   } else if (lattice.origin != tree.lattice.origin) {
     tree.lattice = lattice;
-    refit_exact(tree, tree.root, tree.root_cell);
+    refit_exact(tree, tree.root, tree.root_cell, displaced);
   }
-  tree.rebuild_start_table(start_depth(tree));
-  tree.last.reinserted_points += tree.moving.size();
-  tree.insert_batch(tree.moving);
-  tree.moving.clear();
+  return displaced;
 }
 
 }  // namespace eco::detail

@@ -5,14 +5,14 @@ namespace {
 
 class Pruner {
  public:
-  explicit Pruner(Tree& tree) : t_(tree), cutoff_(tree.age_cutoff()) {}
+  Pruner(Tree& tree, const Box& box) : t_(tree), box_(box), cutoff_(tree.age_cutoff()) {}
 
   /// Prunes the subtree at id; returns true when the node itself is gone.
   bool prune(std::uint32_t id) {
     const Node& n = t_.nodes[id];
     if (n.count == 0) return false;
-    if (n.oldest >= cutoff_ && t_.box.contains_all(n.bounds)) return false;
-    if (t_.box.misses(n.bounds)) {
+    if (n.oldest >= cutoff_ && box_.contains_all(n.bounds)) return false;
+    if (box_.misses(n.bounds)) {
       t_.drop(id);
       return true;
     }
@@ -36,19 +36,20 @@ class Pruner {
  private:
   void filter_leaf(std::uint32_t id) {
     Node& n = t_.nodes[id];
-    n.count = t_.points.retain(n.link, n.count, [&](const StoredPoint& s) { return t_.keeps(s); });
+    n.count = t_.points.retain(n.link, n.count, [&](const StoredPoint& s) { return t_.keeps(s, box_); });
     t_.refit(id);
   }
 
   Tree& t_;
+  const Box& box_;
   std::uint32_t cutoff_ = 0;
 };
 
 }  // namespace
 
-void prune_shift_out(Tree& tree) {
+void prune_shift_out(Tree& tree, const Motion& motion) {
   if (tree.root == kNone) return;
-  if (Pruner(tree).prune(tree.root)) tree.make_root();  // the whole tree left: start afresh
+  if (Pruner(tree, motion.box).prune(tree.root)) tree.make_root();  // the whole tree left: start afresh
 }
 
 }  // namespace eco::detail

@@ -1,45 +1,55 @@
 #pragma once
 // The four stages of one update, in the order update.cpp runs them (paper §IV, DESIGN.md §2).
+// Stage 1 answers with the frame's Motion, which the others read; points a stage takes out of the
+// tree to put back (a precision-origin move, a rebuilt subtree) are handed on, not parked.
 
 #include "core/tree.hpp"
+#include "update/motion.hpp"
 
 #include <eco/types.hpp>
 
 #include <Eigen/Geometry>
 
+#include <vector>
+
 namespace eco::detail {
 
-/// 1. Ego-motion: take the new pose, move the precision origin if the sensor went far from it,
-///    and place the new ego box. AABBs stay in the world; only the query box moves: O(1).
-void advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor);
+/// 1. Ego-motion: the new pose, precision origin and ego box (AABBs stay in the world; only the
+///    query box moves). When the precision origin moved, every held point is re-expressed and
+///    handed back in `displaced` (once per ~2 km). Sets tree.motion.
+struct EgoMotion {
+  Motion motion;
+  std::vector<StoredPoint> displaced;
+};
+EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor);
+/// The same for a map that keeps its first precision origin for good (`moves_origin` false in
+/// next_motion): nothing is ever displaced.
+Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor);
 
-/// 2. Shift-out (R_out): drop subtrees whose bounds left the box, filter the leaves that straddle
-///    it, and drop points past the age limit. Subtrees wholly inside are not visited.
-void prune_shift_out(Tree& tree);
+/// 2. Shift-out (R_out): drop subtrees whose bounds left motion.box, filter the leaves that
+///    straddle it, and drop points past the age limit. Subtrees wholly inside are not visited.
+void prune_shift_out(Tree& tree, const Motion& motion);
 
 /// 3. Overlap refinement (R_over): re-centre the root on the sensor. Quantised: re-link the
 ///    lattice-fixed depth-k subtrees under new top levels. Exact: rebuild the subtrees whose bounds
-///    no longer fit their moved octant. Ends by re-inserting any points the stages set aside.
-void refine_overlap(Tree& tree);
+///    no longer fit their moved octant. Returns `displaced` with the points of the subtrees it
+///    took apart, for stage 4 to put back.
+std::vector<StoredPoint> refine_overlap(Tree& tree, const Motion& motion, std::vector<StoredPoint> displaced);
 
-/// 4. Shift-in (R_in): transform the scan points the insert policy admits into the world, pass
-///    them through the density cap (in scan order) and insert them as one batch, partitioned
-///    top-down from the start-table depth rather than the root.
-void insert_shift_in(Tree& tree, ScanView scan);
-
-/// The scan points the insert policy admits this frame (after advance_ego_motion).
-struct Admission;
-Admission admission(const Tree& tree);
+/// 4. Shift-in (R_in): put `displaced` back, then transform the scan points the insert policy
+///    admits, pass them through the density cap (in scan order) and insert them as one batch,
+///    partitioned top-down from the movement-aware start depth rather than the root.
+void insert_shift_in(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint> displaced);
+/// Stage 4's parts, for the baselines: where insertion starts (the movement-aware start depth
+/// for `motion`), putting `points` back (left empty, capacity kept), and taking in the scan.
+void place_start_table(Tree& tree, const Motion& motion);
+void reinsert(Tree& tree, std::vector<StoredPoint>& points);
+void insert_scan(Tree& tree, const Motion& motion, ScanView scan);
 
 /// Throws std::invalid_argument naming the value unless `pose` is finite and rigid, `scan` is
 /// readable and the density cap's grid can index the points around `pose` (Config's). `name`
 /// names the pose argument in the message.
 void check_update_arguments(const Eigen::Isometry3d& pose, const char* name, const ScanView& scan,
                             const Config& config);
-
-/// The precision origin for a sensor at `position`: `anchor` while the sensor is near it, else
-/// the nearest multiple of 1024 m (always that on the first frame, `first`).
-Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor,
-                                     bool first);
 
 }  // namespace eco::detail

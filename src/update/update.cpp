@@ -68,17 +68,17 @@ const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, Sc
   tree.last = UpdateStats{};
   tree.last.scan_points = scan.count;
 
-  detail::advance_ego_motion(tree, world_T_sensor);  // 1. new pose, new box: O(1)
-  detail::prune_shift_out(tree);                     // 2. R_out
-  detail::refine_overlap(tree);                      // 3. R_over: re-centre the root
-  detail::insert_shift_in(tree, scan);               // 4. R_in
+  auto [motion, displaced] = detail::advance_ego_motion(tree, world_T_sensor);  // 1. pose, box: O(1)
+  detail::prune_shift_out(tree, motion);                                         // 2. R_out
+  displaced = detail::refine_overlap(tree, motion, std::move(displaced));        // 3. R_over
+  detail::insert_shift_in(tree, motion, scan, std::move(displaced));             // 4. R_in
   return tree.last;
 }
 
 const UpdateStats& EgoOctree::update_relative(const Eigen::Isometry3d& previous_T_current,
                                               ScanView scan) {
   check_pose(previous_T_current, "previous_T_current");
-  return update(tree_->pose * previous_T_current, scan);
+  return update(tree_->pose() * previous_T_current, scan);
 }
 
 }  // namespace eco

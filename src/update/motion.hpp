@@ -1,0 +1,48 @@
+#pragma once
+// Where the sensor is this frame, and what that means for the map: stage 1's answer, which
+// stages 2-4 (and the baselines) read instead of the tree's state.
+
+#include "core/geometry.hpp"
+
+#include <eco/config.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <optional>
+
+namespace eco::detail {
+
+/// The ego box [p - L/2, p + L/2) around world position p, in the frame of precision origin
+/// `anchor`.
+inline Box ego_box(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor, double side) {
+  Box b;
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] = (position[a] - anchor[a]) - side / 2;
+    b.hi[a] = b.lo[a] + side;
+  }
+  return b;
+}
+
+struct Motion {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< world_T_sensor
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();        ///< the precision origin, world
+  Box box;                                                 ///< Box(p_t), anchor frame
+  std::optional<Box> previous;  ///< Box(p_{t-1}) in the same frame; none on the first frame
+  double moved = 0.0;           ///< |p_t - p_{t-1}| [m]
+  std::uint32_t frame = 1;      ///< this frame's number, 1 for the first (insertion stamps)
+  /// (old origin - new origin) when the precision origin moved this frame: held points move by it.
+  std::optional<Eigen::Vector3d> origin_shift;
+};
+
+/// The precision origin for a sensor at `position`: `anchor` while the sensor is near it, else
+/// the nearest multiple of 1024 m (always that on the first frame, `first`).
+Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor,
+                                     bool first);
+
+/// The motion to `pose` after `last` (none: the first frame). `moves_origin` false keeps the
+/// first frame's precision origin for good (a global map that never re-expresses its points).
+Motion next_motion(const Eigen::Isometry3d& pose, const std::optional<Motion>& last, double box_side,
+                   bool moves_origin = true);
+
+}  // namespace eco::detail
