@@ -1,9 +1,11 @@
 // EgoOctree: construction, accessors, iteration and statistics. The update is in update/, the
 // queries in query/.
 
+#include "core/invariants.hpp"
 #include "core/tree.hpp"
 #include "query/frames.hpp"
 #include "query/queries.hpp"
+#include "update/stages.hpp"
 
 #include <eco/ego_octree.hpp>
 
@@ -43,6 +45,56 @@ std::vector<Eigen::Vector3d> EgoOctree::points() const {
 }
 
 Stats EgoOctree::stats() const { return detail::tree_stats(*tree_); }
+
+// --- the update (src/update) ------------------------------------------------------------------
+
+const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
+  return detail::run_update(*tree_, world_T_sensor, scan);
+}
+
+const UpdateStats& EgoOctree::update_relative(const Eigen::Isometry3d& previous_T_current, ScanView scan) {
+  detail::check_pose(previous_T_current, "previous_T_current");
+  return update(tree_->pose() * previous_T_current, scan);
+}
+
+// --- queries (src/query) ----------------------------------------------------------------------
+
+std::size_t EgoOctree::knn(const Eigen::Vector3d& query, std::span<Neighbor> out, Frame frame) const {
+  return detail::knn_query(*tree_, query, out, frame);
+}
+
+std::vector<Neighbor> EgoOctree::knn(const Eigen::Vector3d& query, std::size_t k, Frame frame) const {
+  std::vector<Neighbor> out(std::min<std::size_t>(k, size()));
+  out.resize(knn(query, std::span<Neighbor>(out), frame));
+  return out;
+}
+
+std::vector<Neighbor> EgoOctree::radius(const Eigen::Vector3d& query, double radius, Frame frame) const {
+  return detail::radius_query(*tree_, query, radius, frame);
+}
+
+std::vector<Eigen::Vector3d> EgoOctree::box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, Frame frame) const {
+  return detail::box_query(*tree_, lo, hi, frame);
+}
+
+std::vector<VoxelKey> EgoOctree::voxel_keys(double resolution) const {
+  return detail::voxel_keys_of(*tree_, resolution);
+}
+
+std::vector<Eigen::Vector3d> EgoOctree::voxelize(double resolution, Frame frame) const {
+  const std::vector<VoxelKey> keys = voxel_keys(resolution);
+  const Eigen::Vector3d shift = frame == Frame::Ego ? Eigen::Vector3d(pose().translation()) : Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> centres;
+  centres.reserve(keys.size());
+  for (const VoxelKey& k : keys) {
+    centres.push_back(Eigen::Vector3d((double(k.x) + 0.5) * resolution, (double(k.y) + 0.5) * resolution,
+                                      (double(k.z) + 0.5) * resolution) -
+                      shift);
+  }
+  return centres;
+}
+
+std::string EgoOctree::check_invariants() const { return detail::check_tree(*tree_); }
 
 namespace detail {
 

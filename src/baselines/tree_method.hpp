@@ -4,6 +4,7 @@
 // update strategy differs. This base class provides everything but update().
 
 #include "core/tree.hpp"
+#include "core/invariants.hpp"
 #include "query/queries.hpp"
 
 #include <eco/baselines/method.hpp>

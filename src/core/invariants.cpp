@@ -1,7 +1,7 @@
-// EgoOctree::check_invariants: every structural promise of the tree, checked from scratch.
+// check_tree (EgoOctree::check_invariants): every structural promise of the tree, checked from scratch.
 
 #include "core/tree.hpp"
-#include "query/queries.hpp"
+#include "core/invariants.hpp"
 
 #include <eco/ego_octree.hpp>
 
@@ -81,7 +81,5 @@ class Checker {
 namespace detail {
 std::string check_tree(const Tree& t) { return Checker(t).run(); }
 }  // namespace detail
-
-std::string EgoOctree::check_invariants() const { return detail::check_tree(*tree_); }
 
 }  // namespace eco

@@ -6,7 +6,7 @@
 #include "core/geometry.hpp"
 #include "core/node_store.hpp"
 #include "core/point_store.hpp"
-#include "update/motion.hpp"
+#include "core/motion.hpp"
 
 #include <eco/config.hpp>
 #include <eco/types.hpp>

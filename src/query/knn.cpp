@@ -92,14 +92,4 @@ std::size_t knn_query(const Tree& t, const Eigen::Vector3d& query, std::span<Nei
 
 }  // namespace detail
 
-std::size_t EgoOctree::knn(const Eigen::Vector3d& query, std::span<Neighbor> out, Frame frame) const {
-  return detail::knn_query(*tree_, query, out, frame);
-}
-
-std::vector<Neighbor> EgoOctree::knn(const Eigen::Vector3d& query, std::size_t k, Frame frame) const {
-  std::vector<Neighbor> out(std::min<std::size_t>(k, size()));
-  out.resize(knn(query, std::span<Neighbor>(out), frame));
-  return out;
-}
-
 }  // namespace eco

@@ -20,13 +20,11 @@ std::vector<Neighbor> radius_query(const Tree& t, const Eigen::Vector3d& query, 
 /// Held points in the closed box [lo, hi], in no particular order.
 std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                                        Frame frame);
-/// Sorted, unique keys of the occupied voxels of side `resolution`.
+/// Unique keys of the occupied voxels of side `resolution`, in no particular order.
 std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution);
 /// Calls visit(world point) once per held point.
 void for_each_held(const Tree& t, const std::function<void(const Eigen::Vector3d&)>& visit);
 /// Points, nodes, leaf depths and bytes: a walk over the nodes.
 Stats tree_stats(const Tree& t);
-/// Empty when every structural invariant holds, else the first violation.
-std::string check_tree(const Tree& t);
 
 }  // namespace eco::detail

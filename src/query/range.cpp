@@ -57,13 +57,4 @@ std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Vector3d& lo,
 
 }  // namespace detail
 
-std::vector<Neighbor> EgoOctree::radius(const Eigen::Vector3d& query, double radius, Frame frame) const {
-  return detail::radius_query(*tree_, query, radius, frame);
-}
-
-std::vector<Eigen::Vector3d> EgoOctree::box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                                            Frame frame) const {
-  return detail::box_query(*tree_, lo, hi, frame);
-}
-
 }  // namespace eco

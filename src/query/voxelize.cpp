@@ -165,22 +165,4 @@ std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution) {
 
 }  // namespace detail
 
-std::vector<VoxelKey> EgoOctree::voxel_keys(double resolution) const {
-  return detail::voxel_keys_of(*tree_, resolution);
-}
-
-std::vector<Eigen::Vector3d> EgoOctree::voxelize(double resolution, Frame frame) const {
-  const std::vector<VoxelKey> keys = voxel_keys(resolution);
-  const Eigen::Vector3d shift =
-      frame == Frame::Ego ? Eigen::Vector3d(tree_->pose().translation()) : Eigen::Vector3d::Zero();
-  std::vector<Eigen::Vector3d> centres;
-  centres.reserve(keys.size());
-  for (const VoxelKey& k : keys) {
-    centres.push_back(Eigen::Vector3d((double(k.x) + 0.5) * resolution, (double(k.y) + 0.5) * resolution,
-                                      (double(k.z) + 0.5) * resolution) -
-                      shift);
-  }
-  return centres;
-}
-
 }  // namespace eco

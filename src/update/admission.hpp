@@ -4,7 +4,7 @@
 // every method of the benchmark takes in the same points.
 
 #include "core/geometry.hpp"
-#include "update/motion.hpp"
+#include "core/motion.hpp"
 
 #include <eco/config.hpp>
 #include <eco/types.hpp>

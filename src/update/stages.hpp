@@ -4,7 +4,7 @@
 // tree to put back (a precision-origin move, a rebuilt subtree) are handed on, not parked.
 
 #include "core/tree.hpp"
-#include "update/motion.hpp"
+#include "core/motion.hpp"
 
 #include <eco/types.hpp>
 
@@ -46,6 +46,12 @@ void place_start_table(Tree& tree, const Motion& motion);
 void reinsert(Tree& tree, std::vector<StoredPoint>& points);
 void insert_scan(Tree& tree, const Motion& motion, ScanView scan);
 
+/// One update (EgoOctree::update): checks the arguments (the tree unchanged when they are
+/// refused), then runs the four stages. Returns the frame's statistics.
+const UpdateStats& run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
+
+/// Throws std::invalid_argument naming `name` and the value unless `pose` is finite and rigid.
+void check_pose(const Eigen::Isometry3d& pose, const char* name);
 /// Throws std::invalid_argument naming the value unless `pose` is finite and rigid, `scan` is
 /// readable and the density cap's grid can index the points around `pose` (Config's). `name`
 /// names the pose argument in the message.

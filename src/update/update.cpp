@@ -1,4 +1,4 @@
-// EgoOctree::update — the update recipe, stage by stage (paper §IV; DESIGN.md §2).
+// The update recipe (EgoOctree::update), stage by stage (paper §IV; DESIGN.md §2).
 
 #include "update/stages.hpp"
 
@@ -14,20 +14,6 @@ std::string describe(const Eigen::Isometry3d& pose) {
   std::ostringstream s;
   s << "[" << pose.matrix().topRows<3>().format(Eigen::IOFormat(6, 0, ", ", "; ")) << "]";
   return s.str();
-}
-
-void check_pose(const Eigen::Isometry3d& pose, const char* name) {
-  if (!pose.matrix().allFinite()) {
-    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name + " is not finite: " +
-                                describe(pose));
-  }
-  const Eigen::Matrix3d r = pose.linear();
-  const double error = (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  if (error > 1e-6 || r.determinant() < 0.0) {
-    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name +
-                                " has a rotation that is not orthonormal (|R^T R - I| = " +
-                                std::to_string(error) + "): " + describe(pose));
-  }
 }
 
 void check_scan(const ScanView& scan) {
@@ -55,6 +41,20 @@ void check_density_grid(const Eigen::Isometry3d& pose, const Config& config) {
 
 }  // namespace
 
+void detail::check_pose(const Eigen::Isometry3d& pose, const char* name) {
+  if (!pose.matrix().allFinite()) {
+    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name + " is not finite: " +
+                                describe(pose));
+  }
+  const Eigen::Matrix3d r = pose.linear();
+  const double error = (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (error > 1e-6 || r.determinant() < 0.0) {
+    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name +
+                                " has a rotation that is not orthonormal (|R^T R - I| = " +
+                                std::to_string(error) + "): " + describe(pose));
+  }
+}
+
 void detail::check_update_arguments(const Eigen::Isometry3d& pose, const char* name,
                                     const ScanView& scan, const Config& config) {
   check_pose(pose, name);
@@ -62,8 +62,7 @@ void detail::check_update_arguments(const Eigen::Isometry3d& pose, const char* n
   check_density_grid(pose, config);
 }
 
-const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  detail::Tree& tree = *tree_;
+const UpdateStats& detail::run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
   detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, tree.cfg);
   tree.last = UpdateStats{};
   tree.last.scan_points = scan.count;
@@ -73,12 +72,6 @@ const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, Sc
   displaced = detail::refine_overlap(tree, motion, std::move(displaced));        // 3. R_over
   detail::insert_shift_in(tree, motion, scan, std::move(displaced));             // 4. R_in
   return tree.last;
-}
-
-const UpdateStats& EgoOctree::update_relative(const Eigen::Isometry3d& previous_T_current,
-                                              ScanView scan) {
-  check_pose(previous_T_current, "previous_T_current");
-  return update(tree_->pose() * previous_T_current, scan);
 }
 
 }  // namespace eco

@@ -1,6 +1,7 @@
 #pragma once
-// Where the sensor is this frame, and what that means for the map: stage 1's answer, which
-// stages 2-4 (and the baselines) read instead of the tree's state.
+// Where the sensor is this frame, and what that means for the map. The update's stage 1 answers
+// with it (src/update); stages 2-4 and the baselines read it instead of the tree's state, and the
+// tree keeps the current frame's.
 
 #include "core/geometry.hpp"
 
