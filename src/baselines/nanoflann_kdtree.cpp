@@ -45,7 +45,7 @@ class NanoflannKdTree final : public Method {
     const FlatFrame::Step step = frame_.advance(world_T_sensor, scan);
     if (step.shift) {  // re-express against the new origin, as ECO does
       for (auto& p : held_.p) {
-        for (int a = 0; a < 3; ++a) p[a] = float(double(p[a]) + (*step.shift)[a]);
+        p = detail::rebased(p, *step.shift);
         frame_.count(p);
       }
     }

@@ -44,7 +44,7 @@ class PclOctree final : public Method {
       for (const auto& p : held()) {
         std::array<float, 3> q = p;
         if (step.shift) {
-          for (int a = 0; a < 3; ++a) q[a] = float(double(q[a]) + (*step.shift)[a]);
+          q = detail::rebased(q, *step.shift);
         }
         if (box.contains(q[0], q[1], q[2])) kept.push_back(q);
       }

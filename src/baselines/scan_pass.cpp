@@ -29,7 +29,7 @@ class ScanPass final : public Method {
         std::erase_if(b.points, [&](const auto& p) { return !b.alive.contains(p[0], p[1], p[2]); });
         b.bounds = {};
         for (auto& p : b.points) {
-          for (int a = 0; a < 3; ++a) p[a] = float(double(p[a]) + (*step.shift)[a]);
+          p = detail::rebased(p, *step.shift);
           b.bounds.grow(p[0], p[1], p[2]);
         }
         b.alive = box;

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include <array>
 #include <cstdint>
 #include <optional>
 
@@ -35,6 +36,12 @@ struct Motion {
   /// (old origin - new origin) when the precision origin moved this frame: held points move by it.
   std::optional<Eigen::Vector3d> origin_shift;
 };
+
+/// Stored point `p` re-expressed against a moved precision origin (`shift` = old origin - new
+/// origin, a multiple of 1024 m: exact), rounded once more to float.
+inline std::array<float, 3> rebased(const std::array<float, 3>& p, const Eigen::Vector3d& shift) {
+  return {float(double(p[0]) + shift[0]), float(double(p[1]) + shift[1]), float(double(p[2]) + shift[2])};
+}
 
 /// The precision origin for a sensor at `position`: `anchor` while the sensor is near it, else
 /// the nearest multiple of 1024 m (always that on the first frame, `first`).

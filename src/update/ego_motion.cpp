@@ -21,7 +21,7 @@ std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion) {
   tree.root = kNone;
   tree.density.clear();  // cells are counted anew from the re-rounded points
   for (StoredPoint s : held) {
-    for (int a = 0; a < 3; ++a) s.p[a] = float(double(s.p[a]) + shift[a]);
+    s.p = rebased(s.p, shift);
     if (!tree.keeps(s, motion.box)) continue;
     displaced.push_back(s);
     if (tree.cfg.density_cap.enabled()) tree.density.add(tree.density_key(s.p));
