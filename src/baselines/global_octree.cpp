@@ -15,9 +15,7 @@ Config fixed_root(Config config) {
 }  // namespace
 
 GlobalOctree::GlobalOctree(std::string name, const Config& config, bool deletes)
-    : TreeMethod(std::move(name), fixed_root(config)), deletes_(deletes) {
-  tree_.bounded = deletes;
-}
+    : TreeMethod(std::move(name), fixed_root(config)), deletes_(deletes) {}
 
 void GlobalOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
   detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, tree_.cfg);

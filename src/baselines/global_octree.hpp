@@ -16,6 +16,9 @@ class GlobalOctree : public TreeMethod {
 
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override;
 
+ protected:
+  [[nodiscard]] bool holds_only_the_box() const override { return deletes_; }
+
  private:
   void place_first_root(const detail::Box& box);
   /// Doubles the root until its cell holds the whole of `box`.

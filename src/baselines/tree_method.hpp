@@ -44,11 +44,13 @@ class TreeMethod : public Method {
   }
   [[nodiscard]] Stats stats() const override { return detail::tree_stats(tree_); }
   [[nodiscard]] Eigen::Vector3d precision_origin() const override { return tree_.anchor(); }
-  [[nodiscard]] std::string check_invariants() const override { return detail::check_tree(tree_); }
+  [[nodiscard]] std::string check_invariants() const override { return detail::check_tree(tree_, holds_only_the_box()); }
   [[nodiscard]] const Config& config() const override { return tree_.cfg; }
   [[nodiscard]] const Eigen::Isometry3d& pose() const override { return tree_.pose(); }
 
  protected:
+  /// Whether every held point lies in the current ego box (the invariants check it).
+  [[nodiscard]] virtual bool holds_only_the_box() const { return true; }
   std::string name_;
   detail::Tree tree_;
 };

@@ -12,7 +12,7 @@ namespace {
 
 class Checker {
  public:
-  explicit Checker(const detail::Tree& t) : t_(t), box_(t.box()) {}
+  Checker(const detail::Tree& t, bool in_box) : t_(t), box_(t.box()), in_box_(in_box) {}
 
   std::string run() {
     if (t_.root == detail::kNone) return t_.frame() == 0 ? "" : "no root after an update";
@@ -44,7 +44,7 @@ class Checker {
         bounds.grow(s.p[0], s.p[1], s.p[2]);
         oldest = std::min(oldest, s.stamp);
         if (!t_.lattice.contains(cell, s.p)) fail(id, "point outside its cell");
-        if (t_.bounded && !box_.contains(s.p[0], s.p[1], s.p[2])) fail(id, "point outside the ego box");
+        if (in_box_ && !box_.contains(s.p[0], s.p[1], s.p[2])) fail(id, "point outside the ego box");
       });
     } else {
       bool any = false;
@@ -72,6 +72,7 @@ class Checker {
 
   const detail::Tree& t_;
   detail::Box box_;
+  bool in_box_;
   std::size_t seen_ = 0;
   std::ostringstream error_;
 };
@@ -79,7 +80,7 @@ class Checker {
 }  // namespace
 
 namespace detail {
-std::string check_tree(const Tree& t) { return Checker(t).run(); }
+std::string check_tree(const Tree& t, bool in_box) { return Checker(t, in_box).run(); }
 }  // namespace detail
 
 }  // namespace eco

@@ -37,7 +37,6 @@ struct Tree {
   Cell root_cell;
   Lattice lattice;
   int min_leaf_depth = 0;  // k in Quantised mode (the top k levels are always inner), else 0
-  bool bounded = true;     // holds only points in the ego box (false: a global baseline's tree)
 
   std::optional<Motion> motion;  // the current frame's (stage 1 sets it); none before the first
   UpdateStats last;
