@@ -25,8 +25,9 @@ class OctreeBase final : public TreeMethod {
     detail::Tree& t = tree_;
     t.last = UpdateStats{};
     t.last.scan_points = scan.count;
-    auto [motion, displaced] = detail::advance_ego_motion(t, world_T_sensor);  // a moved origin hands back all
-    held_.assign(displaced.begin(), displaced.end());
+    const detail::EgoMotion moved = detail::advance_ego_motion(t, world_T_sensor);  // a moved origin hands back all
+    const detail::Motion& motion = moved.motion;
+    held_.assign(moved.displaced.begin(), moved.displaced.end());
     if (t.root != detail::kNone) {
       t.dissolve(t.root, &held_);
       t.root = detail::kNone;
