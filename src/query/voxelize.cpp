@@ -2,8 +2,9 @@
 //
 // When the voxel side is a lattice cell side (Quantised mode, resolution = voxel_size * 2^i), a
 // node at the voxel's depth is one voxel and its points need not be looked at: the map costs a
-// visit per voxel plus the points of leaves coarser than a voxel. Distinct leaves never share a
-// voxel then, so a leaf's keys are made unique within the leaf and the map needs no global sort.
+// visit per voxel plus the points of leaves coarser than a voxel (marked in a bitmask against the
+// lattice walls inside the leaf). Distinct leaves never share a voxel then, so a leaf's keys are
+// made unique within the leaf and the map needs no global sort.
 // Any other resolution visits every point and sorts.
 
 #include "query/frames.hpp"

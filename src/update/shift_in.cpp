@@ -1,6 +1,9 @@
 #include "update/admission.hpp"
 #include "update/stages.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace eco::detail {
 
 namespace {
