@@ -26,7 +26,6 @@ double ms_since(Clock::time_point start) {
 BenchRun run_bench(const BenchOptions& given, const Progress& progress) {
   const auto started = Clock::now();
   BenchOptions options = given;
-  options.config.voxel_size = options.voxel_resolution;  // the voxel size every method is asked at
   options.config.validate();
   std::vector<std::unique_ptr<baselines::Method>> methods;
   BenchRun run;

@@ -64,6 +64,12 @@ cc = load("C/config.json")
 check(cc["config"]["box_side"] == 16.0 and cc["bench"]["frames"] == 2, cc)
 check(cc["config"]["density_cap"] == ca["config"]["density_cap"], "the file's other fields were lost")
 
+# the bench aligns Config.voxel_size with --voxel unless --voxel_size is given
+check(ca["config"]["voxel_size"] == ca["bench"]["voxel"] == 0.2, ca)
+eco("bench", "--data", "sim", "--preset", "robot", "--methods", "eco", "--knn-queries", "0", "--frames", "2",
+    "--voxel_size", "0.05", "--out", "V")
+check(load("V/config.json")["config"]["voxel_size"] == 0.05, "an explicit --voxel_size was overridden")
+
 # run takes the tree's config from a bench file, and writes its own
 eco("run", "--config", "A/config.json", "--data", "sim", "--frames", "2", "--out", "R")
 cr = load("R/config.json")

@@ -69,6 +69,8 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
     bench::apply_preset(*preset, *o);
     if (cmd->count("--workload") > 0) o->workload = given.workload;
     if (cmd->count("--voxel") > 0) o->voxel_resolution = given.voxel_resolution;
+    // the lattice (and PCL's leaves) at the voxel size every method is asked at, unless given
+    if (cmd->count("--voxel_size") == 0) o->config.voxel_size = o->voxel_resolution;
     flags->apply(o->config);
     if (!data->empty()) o->data = *data;
     bench::pin_to_one_core();
