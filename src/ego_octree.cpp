@@ -109,7 +109,7 @@ Stats tree_stats(const Tree& t) {
   s.points = t.root == kNone ? 0 : t.nodes[t.root].count;
   s.nodes = t.nodes.live();
   s.bytes = sizeof(Tree) + t.nodes.bytes() + t.points.bytes() + t.start.slots.capacity() * sizeof(std::uint32_t) +
-            (t.scratch.capacity() + t.batch_buffers.scan.capacity() + t.batch_buffers.points.capacity()) * sizeof(StoredPoint) +
+            t.buffer_bytes() +
             t.density.bytes();
   if (t.root == kNone) return s;
   double depth_sum = 0.0;

@@ -82,6 +82,32 @@ void Tree::prefetch_start_node(std::size_t from, const std::vector<std::uint32_t
   }
 }
 
+namespace {
+
+template <class T>
+void trim(std::vector<T>& buffer, std::size_t used) {
+  constexpr std::size_t kKeep = 1 << 16;  // below this, not worth giving back
+  if (buffer.capacity() > kKeep && buffer.capacity() > 4 * used) {
+    std::vector<T>().swap(buffer);
+    buffer.reserve(used);
+  }
+}
+
+}  // namespace
+
+void Tree::trim_buffers(std::size_t used) {
+  trim(batch_buffers.scan, used);
+  trim(batch_buffers.points, used);
+  trim(batch_buffers.slot_of, used);
+  trim(scratch, used);
+}
+
+std::size_t Tree::buffer_bytes() const {
+  const BatchBuffers& b = batch_buffers;
+  return (scratch.capacity() + b.scan.capacity() + b.points.capacity()) * sizeof(StoredPoint) +
+         (b.slot_of.capacity() + b.group_start.capacity() + b.group_end.capacity()) * sizeof(std::uint32_t);
+}
+
 std::uint32_t Tree::start_node(const Cell& cell, Cell& at) {
   const std::int64_t slot = start_slot(cell);
   if (slot >= 0 && start.slots[std::size_t(slot)] != kNone) {

@@ -100,6 +100,11 @@ struct Tree {
   /// partitioned by octant top-down from the start table's depth, so each node on their way
   /// is visited once per batch, not once per point.
   void insert_batch(std::vector<StoredPoint>& batch);
+  /// Gives back the working buffers' memory when it is far above the `used` points a frame needs
+  /// now (a first frame that took a whole map in), so they keep what steady frames use.
+  void trim_buffers(std::size_t used);
+  /// Bytes held by the working buffers.
+  [[nodiscard]] std::size_t buffer_bytes() const;
   /// Recomputes count, bounds and oldest stamp of `id` from its points or children.
   void refit(std::uint32_t id);
   /// Releases the subtree at `id` (and the node itself); appends its points to `out` if given.

@@ -52,6 +52,7 @@ void insert_scan(Tree& tree, const Motion& motion, ScanView scan) {
   });
   stats.inserted = batch.size();
   tree.insert_batch(batch);
+  tree.trim_buffers(batch.size());
   batch.clear();
 }
 
