@@ -57,6 +57,7 @@ const std::array<ConfigField, 10> kFields{{
 
 #undef ECO_FIELD_ACCESS
 
+/// The shortest text that reads back as `v` ("nan", "1e-05", "7"): values in errors and config.json.
 std::string number_text(double v) {
   std::array<char, 32> buffer{};
   const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
@@ -77,8 +78,6 @@ bool same_ignoring_case(std::string_view a, std::string_view b) {
   return true;
 }
 
-/// A value as the errors show it: the shortest text that reads back the same ("nan", "1e-05", "7").
-std::string value_text(double v) { return number_text(v); }
 
 }  // namespace
 
@@ -104,6 +103,12 @@ std::string ConfigField::range() const {
   return {};
 }
 
+std::string ConfigField::summary(const Config& defaults) const {
+  std::ostringstream s;
+  s << doc << " [" << range() << (unit.empty() ? "" : " ") << unit << "; default " << format(defaults) << "]";
+  return s.str();
+}
+
 std::string ConfigField::format(const Config& config) const {
   const double v = get(config);
   if (kind == Kind::Choice) {
@@ -116,7 +121,7 @@ std::string ConfigField::format(const Config& config) const {
 void ConfigField::check(double v) const {
   if (kind == Kind::Choice) {
     if (!(v >= 0.0 && v < double(choices.size()) && v == std::floor(v))) {
-      reject(name, value_text(v), "is not one of " + range());
+      reject(name, number_text(v), "is not one of " + range());
     }
     return;
   }
@@ -125,7 +130,7 @@ void ConfigField::check(double v) const {
     std::ostringstream rule;
     rule << (kind == Kind::Count ? "must be a whole number in " : "must be finite and in ") << range();
     if (!unit.empty() && kind == Kind::Real) rule << ' ' << unit;
-    reject(name, value_text(v), rule.str());
+    reject(name, number_text(v), rule.str());
   }
 }
 

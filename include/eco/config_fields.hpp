@@ -30,6 +30,9 @@ struct ConfigField {
   [[nodiscard]] std::string range() const;
   /// The value of this field in `config` as text: "20", "0.1", "AllInBox".
   [[nodiscard]] std::string format(const Config& config) const;
+  /// The doc line with range, unit and `defaults`' value: "L: side … [(0, 1e+05] m; default 20]",
+  /// as the flags' help and the Python docstrings show it.
+  [[nodiscard]] std::string summary(const Config& defaults = {}) const;
   /// The default, as format() writes it.
   [[nodiscard]] std::string default_text() const { return format(Config{}); }
   /// Sets this field of `config` from text (a number; a Choice's spelling in any case). Throws

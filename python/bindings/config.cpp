@@ -17,11 +17,7 @@ using namespace pybind11::literals;
 namespace {
 
 /// A field's line in the table (include/eco/config_fields.hpp), with its range, unit and default.
-std::string doc_of(std::string_view name) {
-  const ConfigField& f = config_field(name);
-  return std::string(f.doc) + " [" + f.range() + (f.unit.empty() ? "" : " " + std::string(f.unit)) +
-         "; default " + f.default_text() + "]";
-}
+std::string doc_of(std::string_view name) { return config_field(name).summary(); }
 
 /// The table, for Python: one dict per field.
 py::list config_fields_list() {

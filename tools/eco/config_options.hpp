@@ -18,11 +18,9 @@ class ConfigFlags {
   ConfigFlags(CLI::App& cmd, const Config& defaults) : texts_(config_fields().size()) {
     std::size_t i = 0;
     for (const ConfigField& f : config_fields()) {
-      std::string help = std::string(f.doc) + " [" + f.range() + (f.unit.empty() ? "" : " " + std::string(f.unit)) +
-                         "; default " + f.format(defaults) + "]";
       const char* type = f.kind == ConfigField::Kind::Real ? "REAL" : f.kind == ConfigField::Kind::Count ? "UINT" : "NAME";
       options_.push_back(
-          cmd.add_option("--" + std::string(f.name), texts_[i++], help)->type_name(type)->group("Tree configuration"));
+          cmd.add_option("--" + std::string(f.name), texts_[i++], f.summary(defaults))->type_name(type)->group("Tree configuration"));
     }
   }
 
