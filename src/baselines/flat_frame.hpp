@@ -81,8 +81,8 @@ class FlatFrame {
     return "";
   }
   [[nodiscard]] VoxelKey voxel(const std::array<float, 3>& p, double res) const {
-    return {detail::world_grid_index(anchor()[0], p[0], res), detail::world_grid_index(anchor()[1], p[1], res),
-            detail::world_grid_index(anchor()[2], p[2], res)};
+    const auto [x, y, z] = detail::WorldGrid({anchor()[0], anchor()[1], anchor()[2]}, res).index(p);
+    return {x, y, z};
   }
 
   /// Throws std::invalid_argument naming `resolution` unless voxels of that side can be indexed.

@@ -10,6 +10,14 @@
 
 namespace eco::detail {
 
+/// The cell index i with i*size - origin <= stored < (i+1)*size - origin, the walls computed in
+/// double, found from any `guess` near it (the guess is off by a step or two at most).
+inline std::int64_t settle_grid_index(std::int64_t guess, double origin, double stored, double size) {
+  while (stored < double(guess) * size - origin) --guess;
+  while (stored >= double(guess + 1) * size - origin) ++guess;
+  return guess;
+}
+
 /// Index of the world-aligned grid cell of side `size` holding a stored coordinate: the i with
 /// i*size - origin <= stored < (i+1)*size - origin, the walls computed in double (the contract's
 /// rule for density cells and voxels). These are the tree's own lattice walls when `size` is a
@@ -17,11 +25,28 @@ namespace eco::detail {
 /// grid_fits(); then the floor is off by at most one step and the walls settle it.
 inline std::int64_t world_grid_index(double origin, float stored, double size) {
   const double f = stored;
-  auto i = std::int64_t(std::floor((origin + f) / size));
-  while (f < double(i) * size - origin) --i;
-  while (f >= double(i + 1) * size - origin) ++i;
-  return i;
+  return settle_grid_index(std::int64_t(std::floor((origin + f) / size)), origin, f, size);
 }
+
+/// world_grid_index for many points of one grid: a multiplication by 1/size and a truncation
+/// make the guess (a division and a floor call per axis cost the density cap ~1/4 of its update).
+class WorldGrid {
+ public:
+  /// `origin`: the precision origin the stored coordinates are relative to.
+  WorldGrid(const std::array<double, 3>& origin, double size) : origin_(origin), size_(size), inverse_(1.0 / size) {}
+
+  [[nodiscard]] std::array<std::int64_t, 3> index(const std::array<float, 3>& stored) const {
+    return {index(0, stored[0]), index(1, stored[1]), index(2, stored[2])};
+  }
+  [[nodiscard]] std::int64_t index(int axis, float stored) const {
+    const double f = stored;
+    return settle_grid_index(std::int64_t((origin_[axis] + f) * inverse_), origin_[axis], f, size_);
+  }
+
+ private:
+  std::array<double, 3> origin_;
+  double size_, inverse_;
+};
 
 /// Whether the grid of side `size` names every coordinate within `reach` metres of the world
 /// origin by an exact 64-bit index with distinct walls: reach / size below 2^50.

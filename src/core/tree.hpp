@@ -38,11 +38,12 @@ struct Tree {
   Lattice lattice;
   int min_leaf_depth = 0;  // k in Quantised mode (the top k levels are always inner), else 0
 
-  std::optional<Motion> motion;  // the current frame's (stage 1 sets it); none before the first
+  std::optional<Motion> motion;  // the current frame's (set_motion); none before the first
   UpdateStats last;
 
   StartTable start;
   CellCounts density;  // points per density-cap cell, kept while the cap is on
+  WorldGrid density_grid{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor (set_motion)
   std::vector<StoredPoint> scratch;  // points of a leaf being split or a subtree collapsed
   struct BatchBuffers {  // insert_batch's and shift-in's, kept so that no frame pays for fresh pages
     std::vector<StoredPoint> scan, points;
@@ -78,12 +79,14 @@ struct Tree {
     }
     return true;
   }
+  /// Enters a new frame (stage 1): its motion, and the density grid seen from its anchor.
+  void set_motion(const Motion& m) {
+    motion = m;
+    density_grid = WorldGrid({m.anchor[0], m.anchor[1], m.anchor[2]}, cfg.density_cap.cell_size);
+  }
   /// The density-cap cell of stored point p, as CellCounts names it.
   [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
-    const double r = cfg.density_cap.cell_size;
-    const Eigen::Vector3d o = anchor();
-    return CellCounts::key({world_grid_index(o[0], p[0], r), world_grid_index(o[1], p[1], r),
-                            world_grid_index(o[2], p[2], r)});
+    return CellCounts::key(density_grid.index(p));
   }
   /// Takes a point that leaves the tree out of the density counts.
   void forget(const StoredPoint& s) {

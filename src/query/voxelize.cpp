@@ -59,7 +59,11 @@ float float_at_or_above(double w) {
 class LatticeVoxels {
  public:
   LatticeVoxels(const Tree& t, double resolution, int shift, std::vector<VoxelKey>& out)
-      : t_(t), anchor_(t.anchor()), res_(resolution), shift_(shift), depth_(t.lattice.max_depth - shift), out_(out) {}
+      : t_(t),
+        grid_({t.anchor()[0], t.anchor()[1], t.anchor()[2]}, resolution),
+        shift_(shift),
+        depth_(t.lattice.max_depth - shift),
+        out_(out) {}
 
   void collect(std::uint32_t id, const Cell& cell) {
     const Node& n = t_.nodes[id];
@@ -123,8 +127,7 @@ class LatticeVoxels {
   void collect_sorted(const Node& n) {
     const std::size_t base = out_.size();
     t_.points.for_each(n.link, n.count, [&](const StoredPoint& s) {
-      const VoxelKey key{world_grid_index(anchor_[0], s.p[0], res_), world_grid_index(anchor_[1], s.p[1], res_),
-                         world_grid_index(anchor_[2], s.p[2], res_)};
+      const VoxelKey key{grid_.index(0, s.p[0]), grid_.index(1, s.p[1]), grid_.index(2, s.p[2])};
       if (out_.size() == base || out_.back() != key) out_.push_back(key);
     });
     std::sort(out_.begin() + std::ptrdiff_t(base), out_.end());
@@ -132,8 +135,7 @@ class LatticeVoxels {
   }
 
   const Tree& t_;
-  Eigen::Vector3d anchor_;
-  double res_;
+  WorldGrid grid_;
   int shift_;
   int depth_;
   std::vector<VoxelKey>& out_;
@@ -152,11 +154,11 @@ std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution) {
   }
   keys.reserve(t.nodes[t.root].count);
   const Eigen::Vector3d anchor = t.anchor();
-  auto index = [&](int a, float stored) { return world_grid_index(anchor[a], stored, resolution); };
+  const WorldGrid grid({anchor[0], anchor[1], anchor[2]}, resolution);
   walk_leaves(
       t, t.root, [](const Aabb&) { return 2; },
       [&](const StoredPoint& s, bool) {
-        const VoxelKey key{index(0, s.p[0]), index(1, s.p[1]), index(2, s.p[2])};
+        const VoxelKey key{grid.index(0, s.p[0]), grid.index(1, s.p[1]), grid.index(2, s.p[2])};
         if (keys.empty() || keys.back() != key) keys.push_back(key);  // neighbours often repeat
       });
   std::sort(keys.begin(), keys.end());

@@ -59,13 +59,13 @@ Motion next_motion(const Eigen::Isometry3d& pose, const std::optional<Motion>& l
 
 EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor) {
   EgoMotion out{next_motion(world_T_sensor, tree.motion, tree.cfg.box_side), {}};
-  tree.motion = out.motion;  // the density keys of the re-expressed points need the new origin
+  tree.set_motion(out.motion);  // the density keys of the re-expressed points need the new origin
   if (out.motion.origin_shift) out.displaced = rebase(tree, out.motion);
   return out;
 }
 
 Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor) {
-  tree.motion = next_motion(world_T_sensor, tree.motion, tree.cfg.box_side, /*moves_origin=*/false);
+  tree.set_motion(next_motion(world_T_sensor, tree.motion, tree.cfg.box_side, /*moves_origin=*/false));
   return *tree.motion;
 }
 
