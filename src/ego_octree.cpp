@@ -16,12 +16,10 @@ EgoOctree::~EgoOctree() = default;
 EgoOctree::EgoOctree(EgoOctree&&) noexcept = default;
 EgoOctree& EgoOctree::operator=(EgoOctree&&) noexcept = default;
 
-std::size_t EgoOctree::size() const {
-  return tree_->root == detail::kNone ? 0 : tree_->nodes[tree_->root].count;
-}
+std::size_t EgoOctree::size() const { return tree_->size(); }
 
-const UpdateStats& EgoOctree::last_update() const { return tree_->last; }
-const Config& EgoOctree::config() const { return tree_->cfg; }
+const UpdateStats& EgoOctree::last_update() const { return last_update_; }
+const Config& EgoOctree::config() const { return tree_->config(); }
 const Eigen::Isometry3d& EgoOctree::pose() const { return tree_->pose(); }
 std::uint32_t EgoOctree::frame_count() const { return tree_->frame(); }
 Eigen::Vector3d EgoOctree::precision_origin() const { return tree_->anchor(); }
@@ -49,7 +47,8 @@ Stats EgoOctree::stats() const { return detail::tree_stats(*tree_); }
 // --- the update (src/update) ------------------------------------------------------------------
 
 const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  return detail::run_update(*tree_, world_T_sensor, scan);
+  last_update_ = detail::run_update(*tree_, world_T_sensor, scan);
+  return last_update_;
 }
 
 const UpdateStats& EgoOctree::update_relative(const Eigen::Isometry3d& previous_T_current, ScanView scan) {
@@ -99,22 +98,20 @@ std::string EgoOctree::check_invariants() const { return detail::check_tree(*tre
 namespace detail {
 
 void for_each_held(const Tree& t, const std::function<void(const Eigen::Vector3d&)>& visit) {
-  if (t.root == kNone) return;
+  if (t.root() == kNone) return;
   walk_leaves(
-      t, t.root, [](const Aabb&) { return 2; }, [&](const StoredPoint& s, bool) { visit(t.to_world(s.p)); });
+      t, t.root(), [](const Aabb&) { return 2; }, [&](const StoredPoint& s, bool) { visit(t.to_world(s.p)); });
 }
 
 Stats tree_stats(const Tree& t) {
   Stats s;
-  s.points = t.root == kNone ? 0 : t.nodes[t.root].count;
-  s.nodes = t.nodes.live();
-  s.bytes = sizeof(Tree) + t.nodes.bytes() + t.points.bytes() + t.start.slots.capacity() * sizeof(std::uint32_t) +
-            t.buffer_bytes() +
-            t.density.bytes();
-  if (t.root == kNone) return s;
+  s.points = t.size();
+  s.nodes = t.nodes().live();
+  s.bytes = t.bytes();
+  if (t.root() == kNone) return s;
   double depth_sum = 0.0;
   auto walk = [&](auto&& self, std::uint32_t id) -> void {
-    const Node& n = t.nodes[id];
+    const Node& n = t.nodes()[id];
     if (n.leaf) {
       if (n.count == 0) return;
       ++s.leaves;
@@ -123,11 +120,11 @@ Stats tree_stats(const Tree& t) {
       return;
     }
     for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = t.nodes.child(id, o);
+      const std::uint32_t ch = t.nodes().child(id, o);
       if (ch != kNone) self(self, ch);
     }
   };
-  walk(walk, t.root);
+  walk(walk, t.root());
   s.mean_leaf_depth = s.leaves ? depth_sum / double(s.leaves) : 0.0;
   return s;
 }

@@ -32,7 +32,7 @@
 namespace eco {
 
 namespace detail {
-struct Tree;
+class Tree;
 }
 
 class EgoOctree {
@@ -111,6 +111,7 @@ class EgoOctree {
 
  private:
   std::unique_ptr<detail::Tree> tree_;
+  UpdateStats last_update_;
 };
 
 }  // namespace eco

@@ -3,6 +3,7 @@
 #include "update/stages.hpp"
 
 #include <cmath>
+#include <optional>
 
 namespace eco::baselines {
 namespace {
@@ -12,83 +13,44 @@ Config fixed_root(Config config) {
   return config;
 }
 
+/// The first root: the cell of side L on the first box.
+detail::Lattice first_lattice(const Config& config, const detail::Box& box) {
+  detail::Lattice lattice;
+  lattice.max_depth = config.max_depth();
+  lattice.unit = std::ldexp(config.box_side, -lattice.max_depth);
+  lattice.origin = box.lo;
+  return lattice;
+}
+
+/// None when the root's cell holds all of `box`; else the octant the old root takes in a root
+/// twice its size that grows toward the box (down on each axis where the box sticks out below).
+std::optional<int> growth_toward(const detail::Tree& t, const detail::Box& box) {
+  const detail::Lattice& lattice = t.lattice();
+  const std::int64_t side = lattice.side(0);
+  bool covered = true;
+  int octant = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = lattice.wall(a, t.root_cell().lo[a]), hi = lattice.wall(a, t.root_cell().lo[a] + side);
+    if (box.lo[a] < lo) octant |= 1 << a;
+    covered = covered && box.lo[a] >= lo && box.hi[a] <= hi;
+  }
+  return covered ? std::nullopt : std::optional<int>(octant);
+}
+
 }  // namespace
 
 GlobalOctree::GlobalOctree(std::string name, const Config& config, bool deletes)
     : TreeMethod(std::move(name), fixed_root(config)), deletes_(deletes) {}
 
 void GlobalOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, tree_.cfg);
   detail::Tree& t = tree_;
-  t.last = UpdateStats{};
-  t.last.scan_points = scan.count;
+  UpdateStats stats = detail::begin_update(t, world_T_sensor, scan);
   // the precision origin stays where the drive began, like the root
   const detail::Motion motion = detail::advance_ego_motion_fixed_origin(t, world_T_sensor);
-  if (t.root == detail::kNone) place_first_root(motion.box);
-  if (deletes_) detail::prune_shift_out(t, motion);
-  grow_to_cover(motion.box);
-  detail::insert_scan(t, motion, scan);  // from the root: the doubled roots sit off ECO's lattice
-}
-
-void GlobalOctree::place_first_root(const detail::Box& box) {
-  detail::Tree& t = tree_;
-  t.lattice.unit = std::ldexp(t.cfg.box_side, -t.lattice.max_depth);
-  t.lattice.origin = box.lo;
-  t.root_cell = detail::Cell{};
-  t.make_root();
-}
-
-void GlobalOctree::grow_to_cover(const detail::Box& box) {
-  const detail::Tree& t = tree_;
-  auto covered = [&] {
-    const std::int64_t side = t.lattice.side(0);
-    for (int a = 0; a < 3; ++a) {
-      if (box.lo[a] < t.lattice.wall(a, t.root_cell.lo[a]) || box.hi[a] > t.lattice.wall(a, t.root_cell.lo[a] + side)) {
-        return false;
-      }
-    }
-    return true;
-  };
-  while (!covered()) grow_once(box);
-}
-
-void GlobalOctree::grow_once(const detail::Box& box) {
-  detail::Tree& t = tree_;
-  const std::int64_t side = t.lattice.side(0);
-  // Every level moves one down: depths are counted from the root.
-  auto deepen = [&](auto&& self, std::uint32_t id) -> void {
-    ++t.nodes[id].depth;
-    if (t.nodes[id].leaf) return;
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = t.nodes.child(id, o);
-      if (ch != detail::kNone) self(self, ch);
-    }
-  };
-  deepen(deepen, t.root);
-  ++t.lattice.max_depth;
-  // The old root becomes the child on the side away from the box.
-  detail::Cell cell{t.root_cell.lo, 0};
-  int octant = 0;
-  for (int a = 0; a < 3; ++a) {
-    if (box.lo[a] < t.lattice.wall(a, t.root_cell.lo[a])) {
-      cell.lo[a] -= side;
-      octant |= 1 << a;
-    }
-  }
-  const std::uint32_t old_root = t.root;
-  t.root_cell = cell;
-  if (t.nodes[old_root].count == 0) {  // nothing to keep: just a bigger empty root
-    t.nodes.release(old_root);
-    t.make_root();
-    return;
-  }
-  if (t.should_collapse(old_root)) t.collapse(old_root);  // a root may be small; a child may not
-  t.root = t.nodes.make_leaf(detail::kNone, 0, 0);
-  t.nodes.make_inner(t.root);
-  t.nodes.child(t.root, octant) = old_root;
-  t.nodes[old_root].parent = t.root;
-  t.nodes[old_root].octant = static_cast<std::uint8_t>(octant);
-  t.refit(t.root);
+  if (t.root() == detail::kNone) t.place_root(detail::Cell{}, first_lattice(t.config(), motion.box));
+  if (deletes_) detail::prune_shift_out(t, motion, stats);
+  while (const std::optional<int> octant = growth_toward(t, motion.box)) t.grow_root(*octant);
+  detail::insert_scan(t, motion, scan, stats);  // from the root: the doubled roots sit off ECO's lattice
 }
 
 }  // namespace eco::baselines

@@ -20,11 +20,6 @@ class GlobalOctree : public TreeMethod {
   [[nodiscard]] bool holds_only_the_box() const override { return deletes_; }
 
  private:
-  void place_first_root(const detail::Box& box);
-  /// Doubles the root until its cell holds the whole of `box`.
-  void grow_to_cover(const detail::Box& box);
-  void grow_once(const detail::Box& box);
-
   bool deletes_;
 };
 

@@ -21,26 +21,16 @@ class OctreeBase final : public TreeMethod {
   explicit OctreeBase(const Config& config) : TreeMethod("octree_base", rebuilt_from_the_box(config)) {}
 
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
-    detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, tree_.cfg);
     detail::Tree& t = tree_;
-    t.last = UpdateStats{};
-    t.last.scan_points = scan.count;
-    const detail::EgoMotion moved = detail::advance_ego_motion(t, world_T_sensor);  // a moved origin hands back all
-    const detail::Motion& motion = moved.motion;
-    held_.assign(moved.displaced.begin(), moved.displaced.end());
-    if (t.root != detail::kNone) {
-      t.dissolve(t.root, &held_);
-      t.root = detail::kNone;
-    }
-    held_ = detail::refine_overlap(t, motion, std::move(held_));  // a new, empty root on the box
-    std::erase_if(held_, [&](const detail::StoredPoint& s) { return !t.keeps(s, motion.box); });
+    UpdateStats stats = detail::begin_update(t, world_T_sensor, scan);
+    auto [motion, held] = detail::advance_ego_motion(t, world_T_sensor, stats);  // a moved origin hands back all
+    detail::prune_shift_out(t, motion, stats);  // what left the box or aged out
+    t.take_points(held);                        // the rest, to be rebuilt from scratch
+    held = detail::refine_overlap(t, motion, std::move(held), stats);  // a new, empty root on the box
     t.rebuild_start_table(0);  // the paper's: every point from the root
-    detail::reinsert(t, held_);
-    detail::insert_scan(t, motion, scan);
+    detail::reinsert(t, held, stats);
+    detail::insert_scan(t, motion, scan, stats);
   }
-
- private:
-  std::vector<detail::StoredPoint> held_;
 };
 
 }  // namespace

@@ -40,12 +40,12 @@ class TreeMethod : public Method {
     return out;
   }
   [[nodiscard]] std::size_t size() const override {
-    return tree_.root == detail::kNone ? 0 : tree_.nodes[tree_.root].count;
+    return tree_.size();
   }
   [[nodiscard]] Stats stats() const override { return detail::tree_stats(tree_); }
   [[nodiscard]] Eigen::Vector3d precision_origin() const override { return tree_.anchor(); }
   [[nodiscard]] std::string check_invariants() const override { return detail::check_tree(tree_, holds_only_the_box()); }
-  [[nodiscard]] const Config& config() const override { return tree_.cfg; }
+  [[nodiscard]] const Config& config() const override { return tree_.config(); }
   [[nodiscard]] const Eigen::Isometry3d& pose() const override { return tree_.pose(); }
 
  protected:

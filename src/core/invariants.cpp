@@ -15,10 +15,10 @@ class Checker {
   Checker(const detail::Tree& t, bool in_box) : t_(t), box_(t.box()), in_box_(in_box) {}
 
   std::string run() {
-    if (t_.root == detail::kNone) return t_.frame() == 0 ? "" : "no root after an update";
-    if (t_.nodes[t_.root].parent != detail::kNone) fail(t_.root, "root has a parent");
-    check(t_.root, t_.root_cell);
-    if (t_.nodes.live() != seen_) fail(t_.root, "live node count differs from reachable nodes");
+    if (t_.root() == detail::kNone) return t_.frame() == 0 ? "" : "no root after an update";
+    if (t_.nodes()[t_.root()].parent != detail::kNone) fail(t_.root(), "root has a parent");
+    check(t_.root(), t_.root_cell());
+    if (t_.nodes().live() != seen_) fail(t_.root(), "live node count differs from reachable nodes");
     return error_.str();
   }
 
@@ -29,43 +29,43 @@ class Checker {
 
   void check(std::uint32_t id, const detail::Cell& cell) {
     ++seen_;
-    const detail::Node& n = t_.nodes[id];
+    const detail::Node& n = t_.nodes()[id];
     if (n.depth != cell.depth) fail(id, "depth differs from its cell's");
     detail::Aabb bounds;
     std::uint32_t count = 0;
     std::uint32_t oldest = detail::kNone;
     if (n.leaf) {
-      if (n.depth < t_.min_leaf_depth && id != t_.root) fail(id, "leaf above the lattice depth");
-      if (n.count > t_.cfg.leaf_capacity && n.depth < t_.lattice.max_depth) {
+      if (n.depth < t_.min_leaf_depth() && id != t_.root()) fail(id, "leaf above the lattice depth");
+      if (n.count > t_.config().leaf_capacity && n.depth < t_.lattice().max_depth) {
         fail(id, "overfull leaf above the minimum cell size");
       }
-      t_.points.for_each(n.link, n.count, [&](const detail::StoredPoint& s) {
+      t_.points().for_each(n.link, n.count, [&](const detail::StoredPoint& s) {
         ++count;
         bounds.grow(s.p[0], s.p[1], s.p[2]);
         oldest = std::min(oldest, s.stamp);
-        if (!t_.lattice.contains(cell, s.p)) fail(id, "point outside its cell");
+        if (!t_.lattice().contains(cell, s.p)) fail(id, "point outside its cell");
         if (in_box_ && !box_.contains(s.p[0], s.p[1], s.p[2])) fail(id, "point outside the ego box");
       });
     } else {
       bool any = false;
       for (int o = 0; o < 8; ++o) {
-        const std::uint32_t ch = t_.nodes.child(id, o);
+        const std::uint32_t ch = t_.nodes().child(id, o);
         if (ch == detail::kNone) continue;
         any = true;
-        const detail::Node& c = t_.nodes[ch];
+        const detail::Node& c = t_.nodes()[ch];
         if (c.parent != id || c.octant != o) fail(ch, "parent link broken");
-        check(ch, t_.lattice.child(cell, o));
+        check(ch, t_.lattice().child(cell, o));
         count += c.count;
         bounds.merge(c.bounds);
         oldest = std::min(oldest, c.oldest);
       }
-      if (!any && id != t_.root) fail(id, "inner node without children");
-      if (n.depth >= t_.min_leaf_depth && n.count <= t_.cfg.leaf_capacity && id != t_.root) {
+      if (!any && id != t_.root()) fail(id, "inner node without children");
+      if (n.depth >= t_.min_leaf_depth() && n.count <= t_.config().leaf_capacity && id != t_.root()) {
         fail(id, "inner node small enough to be a leaf");
       }
     }
     if (count != n.count) fail(id, "count differs from its points");
-    if (count == 0 && id != t_.root) fail(id, "empty node kept");
+    if (count == 0 && id != t_.root()) fail(id, "empty node kept");
     if (bounds.lo != n.bounds.lo || bounds.hi != n.bounds.hi) fail(id, "bounds not tight");
     if (oldest != n.oldest) fail(id, "oldest stamp wrong");
   }

@@ -5,10 +5,10 @@
 
 namespace eco::detail {
 
-Tree::Tree(const Config& config) : cfg(config), points(config.max_age_frames > 0) {
-  cfg.validate();
-  min_leaf_depth = cfg.recentring == Recentring::Quantised ? int(cfg.quantum_levels) : 0;
-  lattice.max_depth = cfg.max_depth();
+Tree::Tree(const Config& config) : cfg_(config), points_(config.max_age_frames > 0) {
+  cfg_.validate();
+  min_leaf_depth_ = cfg_.recentring == Recentring::Quantised ? int(cfg_.quantum_levels) : 0;
+  lattice_.max_depth = cfg_.max_depth();
 }
 
 std::array<float, 3> Tree::to_stored(const Eigen::Vector3d& world) const {
@@ -21,9 +21,125 @@ Eigen::Vector3d Tree::to_world(const std::array<float, 3>& stored) const {
   return {o[0] + double(stored[0]), o[1] + double(stored[1]), o[2] + double(stored[2])};
 }
 
+std::size_t Tree::bytes() const {
+  return sizeof(Tree) + nodes_.bytes() + points_.bytes() + start_.slots.capacity() * sizeof(std::uint32_t) +
+         buffer_bytes() + density_.bytes();
+}
+
+void Tree::set_motion(const Motion& m) {
+  motion_ = m;
+  density_grid_ = WorldGrid({m.anchor[0], m.anchor[1], m.anchor[2]}, cfg_.density_cap.cell_size);
+}
+
+bool Tree::keeps(const StoredPoint& s, const Box& box, UpdateStats& stats) {
+  if (!box.contains(s.p[0], s.p[1], s.p[2])) {
+    ++stats.pruned;
+    forget(s);
+    return false;
+  }
+  if (s.stamp < age_cutoff()) {
+    ++stats.aged_out;
+    forget(s);
+    return false;
+  }
+  return true;
+}
+
+void Tree::recount_density(const std::vector<StoredPoint>& held) {
+  density_.clear();
+  if (!cfg_.density_cap.enabled()) return;
+  for (const StoredPoint& s : held) density_.add(density_key(s.p));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The root
+
+void Tree::place_root(const Cell& cell, const Lattice& lattice) {
+  if (root_ != kNone) dissolve(root_, nullptr);
+  lattice_ = lattice;
+  root_cell_ = cell;
+  make_root();
+}
+
+std::vector<std::pair<std::uint32_t, Cell>> Tree::detach_subtrees(int depth) {
+  std::vector<std::pair<std::uint32_t, Cell>> subtrees;
+  auto collect = [&](auto&& self, std::uint32_t id, const Cell& cell) -> void {
+    if (cell.depth == depth) {
+      subtrees.emplace_back(id, cell);
+      return;
+    }
+    for (int o = 0; o < 8; ++o) {
+      const std::uint32_t ch = nodes_.child(id, o);
+      if (ch != kNone) self(self, ch, lattice_.child(cell, o));
+    }
+    nodes_.release(id);
+  };
+  if (root_ != kNone) collect(collect, root_, root_cell_);
+  root_ = kNone;
+  return subtrees;
+}
+
+void Tree::attach_subtree(std::uint32_t id, const Cell& cell) {
+  std::uint32_t parent = root_;
+  Cell at = root_cell_;
+  while (at.depth < cell.depth - 1) {
+    const int o = lattice_.octant_of(at, cell);
+    parent = child_or_new(parent, at, o);
+    at = lattice_.child(at, o);
+  }
+  const int o = lattice_.octant_of(at, cell);
+  nodes_.child(parent, o) = id;
+  nodes_[id].parent = parent;
+  nodes_[id].octant = static_cast<std::uint8_t>(o);
+}
+
+void Tree::refit_above(int depth) {
+  auto walk = [&](auto&& self, std::uint32_t id) -> void {
+    if (nodes_[id].depth >= depth) return;
+    for (int o = 0; o < 8; ++o) {
+      const std::uint32_t ch = nodes_.child(id, o);
+      if (ch != kNone) self(self, ch);
+    }
+    refit(id);
+  };
+  if (root_ != kNone) walk(walk, root_);
+}
+
+void Tree::grow_root(int octant) {
+  const std::int64_t side = lattice_.side(0);
+  auto deepen = [&](auto&& self, std::uint32_t id) -> void {  // depths count from the root
+    ++nodes_[id].depth;
+    if (nodes_[id].leaf) return;
+    for (int o = 0; o < 8; ++o) {
+      const std::uint32_t ch = nodes_.child(id, o);
+      if (ch != kNone) self(self, ch);
+    }
+  };
+  deepen(deepen, root_);
+  ++lattice_.max_depth;
+  Cell cell{root_cell_.lo, 0};
+  for (int a = 0; a < 3; ++a) {
+    if (octant >> a & 1) cell.lo[a] -= side;
+  }
+  const std::uint32_t old_root = root_;
+  root_cell_ = cell;
+  if (nodes_[old_root].count == 0) {  // nothing to keep: just a bigger empty root
+    nodes_.release(old_root);
+    make_root();
+    return;
+  }
+  if (should_collapse(old_root)) collapse(old_root);  // a root may be small; a child may not
+  root_ = nodes_.make_leaf(kNone, 0, 0);
+  nodes_.make_inner(root_);
+  nodes_.child(root_, octant) = old_root;
+  nodes_[old_root].parent = root_;
+  nodes_[old_root].octant = static_cast<std::uint8_t>(octant);
+  refit(root_);
+}
+
 void Tree::make_root() {
-  root = nodes.make_leaf(kNone, 0, 0);
-  if (min_leaf_depth > 0) nodes.make_inner(root);
+  root_ = nodes_.make_leaf(kNone, 0, 0);
+  if (min_leaf_depth_ > 0) nodes_.make_inner(root_);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -31,26 +147,26 @@ void Tree::make_root() {
 
 void Tree::insert_batch(std::vector<StoredPoint>& batch) {
   if (batch.empty()) return;
-  std::vector<StoredPoint>& temp = batch_buffers.points;
+  std::vector<StoredPoint>& temp = batch_buffers_.points;
   temp.resize(batch.size());
   // Group the points by their start-depth cell (a counting sort), then insert each group below
   // its start node and add it to the ancestors once.
-  const int depth = start.depth;
-  std::vector<std::uint32_t>& first = batch_buffers.group_start;
-  first.assign((depth == 0 ? 1 : start.slots.size()) + 1, 0);
+  const int depth = start_.depth;
+  std::vector<std::uint32_t>& first = batch_buffers_.group_start;
+  first.assign((depth == 0 ? 1 : start_.slots.size()) + 1, 0);
   if (depth == 0) {
     first[1] = std::uint32_t(batch.size());
   } else {
-    std::vector<std::uint32_t>& slot_of = batch_buffers.slot_of;
+    std::vector<std::uint32_t>& slot_of = batch_buffers_.slot_of;
     slot_of.resize(batch.size());
     for (std::size_t i = 0; i < batch.size(); ++i) {
-      const std::int64_t slot = start_slot(lattice.cell_at(depth, batch[i].p));
+      const std::int64_t slot = start_slot(lattice_.cell_at(depth, batch[i].p));
       assert(slot >= 0);
       slot_of[i] = std::uint32_t(slot);
       ++first[std::size_t(slot) + 1];
     }
     for (std::size_t b = 0; b + 1 < first.size(); ++b) first[b + 1] += first[b];
-    std::vector<std::uint32_t>& at = batch_buffers.group_end;
+    std::vector<std::uint32_t>& at = batch_buffers_.group_end;
     at.assign(first.begin(), first.end() - 1);
     for (std::size_t i = 0; i < batch.size(); ++i) temp[at[slot_of[i]]++] = batch[i];
     batch.swap(temp);
@@ -60,12 +176,12 @@ void Tree::insert_batch(std::vector<StoredPoint>& batch) {
     prefetch_start_node(b + 1, first);
     StoredPoint* group = batch.data() + first[b];
     const std::uint32_t m = first[b + 1] - first[b];
-    Cell cell = depth == 0 ? root_cell : lattice.cell_at(depth, group->p);
-    const std::uint32_t id = depth == 0 ? root : start_node(cell, cell);
+    Cell cell = depth == 0 ? root_cell_ : lattice_.cell_at(depth, group->p);
+    const std::uint32_t id = depth == 0 ? root_ : start_node(cell, cell);
     insert_range(id, cell, group, group + m, temp.data() + first[b]);
-    const Node& top = nodes[id];
-    for (std::uint32_t up = top.parent; up != kNone; up = nodes[up].parent) {
-      Node& n = nodes[up];
+    const Node& top = nodes_[id];
+    for (std::uint32_t up = top.parent; up != kNone; up = nodes_[up].parent) {
+      Node& n = nodes_[up];
       n.count += m;
       n.bounds.merge(top.bounds);
       n.oldest = std::min(n.oldest, top.oldest);
@@ -74,10 +190,10 @@ void Tree::insert_batch(std::vector<StoredPoint>& batch) {
 }
 
 void Tree::prefetch_start_node(std::size_t from, const std::vector<std::uint32_t>& first) const {
-  if (start.depth == 0) return;
+  if (start_.depth == 0) return;
   for (std::size_t b = from; b + 1 < first.size(); ++b) {
     if (first[b] == first[b + 1]) continue;
-    if (const std::uint32_t id = start.slots[b]; id != kNone) nodes.prefetch(id);
+    if (const std::uint32_t id = start_.slots[b]; id != kNone) nodes_.prefetch(id);
     return;
   }
 }
@@ -96,31 +212,31 @@ void trim(std::vector<T>& buffer, std::size_t used) {
 }  // namespace
 
 void Tree::trim_buffers(std::size_t used) {
-  trim(batch_buffers.scan, used);
-  trim(batch_buffers.points, used);
-  trim(batch_buffers.slot_of, used);
-  trim(scratch, used);
+  trim(batch_buffers_.scan, used);
+  trim(batch_buffers_.points, used);
+  trim(batch_buffers_.slot_of, used);
+  trim(scratch_, used);
 }
 
 std::size_t Tree::buffer_bytes() const {
-  const BatchBuffers& b = batch_buffers;
-  return (scratch.capacity() + b.scan.capacity() + b.points.capacity()) * sizeof(StoredPoint) +
+  const BatchBuffers& b = batch_buffers_;
+  return (scratch_.capacity() + b.scan.capacity() + b.points.capacity()) * sizeof(StoredPoint) +
          (b.slot_of.capacity() + b.group_start.capacity() + b.group_end.capacity()) * sizeof(std::uint32_t);
 }
 
 std::uint32_t Tree::start_node(const Cell& cell, Cell& at) {
   const std::int64_t slot = start_slot(cell);
-  if (slot >= 0 && start.slots[std::size_t(slot)] != kNone) {
+  if (slot >= 0 && start_.slots[std::size_t(slot)] != kNone) {
     at = cell;
-    return start.slots[std::size_t(slot)];
+    return start_.slots[std::size_t(slot)];
   }
-  std::uint32_t id = root;
+  std::uint32_t id = root_;
   const Cell target = cell;
-  at = root_cell;
-  while (at.depth < target.depth && !nodes[id].leaf) {
-    const int o = lattice.octant_of(at, target);
+  at = root_cell_;
+  while (at.depth < target.depth && !nodes_[id].leaf) {
+    const int o = lattice_.octant_of(at, target);
     id = child_or_new(id, at, o);
-    at = lattice.child(at, o);
+    at = lattice_.child(at, o);
   }
   return id;
 }
@@ -128,9 +244,9 @@ std::uint32_t Tree::start_node(const Cell& cell, Cell& at) {
 void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, StoredPoint* to,
                         StoredPoint* temp) {
   const auto m = std::uint32_t(to - from);
-  if (nodes[id].leaf && (nodes[id].count + m <= cfg.leaf_capacity || cell.depth >= lattice.max_depth)) {
-    Node& n = nodes[id];
-    points.append(n.link, n.count, from, to);
+  if (nodes_[id].leaf && (nodes_[id].count + m <= cfg_.leaf_capacity || cell.depth >= lattice_.max_depth)) {
+    Node& n = nodes_[id];
+    points_.append(n.link, n.count, from, to);
     n.count += m;
     for (const StoredPoint* s = from; s != to; ++s) {
       n.bounds.grow(s->p[0], s->p[1], s->p[2]);
@@ -138,13 +254,13 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, S
     }
     return;
   }
-  if (nodes[id].leaf) split(id, cell);  // holds at most leaf_capacity: its children need no split
-  nodes.prefetch_children(id);  // their misses overlap the partition below
+  if (nodes_[id].leaf) split(id, cell);  // holds at most leaf_capacity: its children need no split
+  nodes_.prefetch_children(id);  // their misses overlap the partition below
   // Partition by octant into `temp` (a counting sort); the children read from there and use
   // this range as theirs.
-  const std::int64_t half = lattice.side(cell.depth) / 2;
-  const std::array<double, 3> wall{lattice.wall(0, cell.lo[0] + half), lattice.wall(1, cell.lo[1] + half),
-                                   lattice.wall(2, cell.lo[2] + half)};
+  const std::int64_t half = lattice_.side(cell.depth) / 2;
+  const std::array<double, 3> wall{lattice_.wall(0, cell.lo[0] + half), lattice_.wall(1, cell.lo[1] + half),
+                                   lattice_.wall(2, cell.lo[2] + half)};
   auto octant = [&](const StoredPoint& s) {
     return int(double(s.p[0]) >= wall[0]) | int(double(s.p[1]) >= wall[1]) << 1 |
            int(double(s.p[2]) >= wall[2]) << 2;
@@ -161,7 +277,7 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, S
   std::array<std::uint32_t, 8> at{};
   std::copy(begin.begin(), begin.end() - 1, at.begin());
   for (const StoredPoint* s = from; s != to; ++s) temp[at[std::size_t(octant(*s))]++] = *s;
-  Node& n = nodes[id];
+  Node& n = nodes_[id];
   n.count += m;
   n.bounds.merge(bounds);
   n.oldest = std::min(n.oldest, oldest);
@@ -169,54 +285,54 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, S
     const std::uint32_t lo = begin[std::size_t(o)], hi = begin[std::size_t(o) + 1];
     if (lo == hi) continue;
     const std::uint32_t ch = child_or_new(id, cell, o);
-    insert_range(ch, lattice.child(cell, o), temp + lo, temp + hi, from + lo);
+    insert_range(ch, lattice_.child(cell, o), temp + lo, temp + hi, from + lo);
   }
 }
 
 std::uint32_t Tree::child_or_new(std::uint32_t id, const Cell& cell, int octant) {
-  std::uint32_t ch = nodes.child(id, octant);
+  std::uint32_t ch = nodes_.child(id, octant);
   if (ch != kNone) return ch;
   const int depth = cell.depth + 1;
-  ch = nodes.make_leaf(id, octant, depth);
-  nodes.child(id, octant) = ch;
-  if (depth < min_leaf_depth) nodes.make_inner(ch);
-  note_created(ch, lattice.child(cell, octant));
+  ch = nodes_.make_leaf(id, octant, depth);
+  nodes_.child(id, octant) = ch;
+  if (depth < min_leaf_depth_) nodes_.make_inner(ch);
+  note_created(ch, lattice_.child(cell, octant));
   return ch;
 }
 
 void Tree::split(std::uint32_t id, const Cell& cell) {
-  const std::size_t base = scratch.size();
-  points.drain(nodes[id].link, nodes[id].count, scratch);
-  nodes.make_inner(id);
+  const std::size_t base = scratch_.size();
+  points_.drain(nodes_[id].link, nodes_[id].count, scratch_);
+  nodes_.make_inner(id);
   // Group the points by octant (a counting sort behind them), then hand each child its group.
-  const std::size_t m = scratch.size() - base;
+  const std::size_t m = scratch_.size() - base;
   std::array<std::uint32_t, 9> begin{};
-  for (std::size_t i = base; i < base + m; ++i) ++begin[std::size_t(lattice.octant(cell, scratch[i].p)) + 1];
+  for (std::size_t i = base; i < base + m; ++i) ++begin[std::size_t(lattice_.octant(cell, scratch_[i].p)) + 1];
   for (std::size_t o = 0; o < 8; ++o) begin[o + 1] += begin[o];
   std::array<std::uint32_t, 8> at{};
   std::copy(begin.begin(), begin.end() - 1, at.begin());
-  scratch.resize(base + 2 * m);
-  StoredPoint* grouped = scratch.data() + base + m;
+  scratch_.resize(base + 2 * m);
+  StoredPoint* grouped = scratch_.data() + base + m;
   for (std::size_t i = base; i < base + m; ++i) {
-    grouped[at[std::size_t(lattice.octant(cell, scratch[i].p))]++] = scratch[i];
+    grouped[at[std::size_t(lattice_.octant(cell, scratch_[i].p))]++] = scratch_[i];
   }
   for (int o = 0; o < 8; ++o) {
     const StoredPoint* from = grouped + begin[std::size_t(o)];
     const StoredPoint* to = grouped + begin[std::size_t(o) + 1];
     if (from == to) continue;
-    Node& n = nodes[child_or_new(id, cell, o)];
-    points.append(n.link, n.count, from, to);
+    Node& n = nodes_[child_or_new(id, cell, o)];
+    points_.append(n.link, n.count, from, to);
     n.count += std::uint32_t(to - from);
     for (const StoredPoint* s = from; s != to; ++s) {
       n.bounds.grow(s->p[0], s->p[1], s->p[2]);
       n.oldest = std::min(n.oldest, s->stamp);
     }
   }
-  scratch.resize(base);
+  scratch_.resize(base);
   for (int o = 0; o < 8; ++o) {
-    const std::uint32_t ch = nodes.child(id, o);
-    if (ch != kNone && nodes[ch].count > cfg.leaf_capacity && cell.depth + 1 < lattice.max_depth) {
-      split(ch, lattice.child(cell, o));
+    const std::uint32_t ch = nodes_.child(id, o);
+    if (ch != kNone && nodes_[ch].count > cfg_.leaf_capacity && cell.depth + 1 < lattice_.max_depth) {
+      split(ch, lattice_.child(cell, o));
     }
   }
 }
@@ -225,97 +341,108 @@ void Tree::split(std::uint32_t id, const Cell& cell) {
 // Removal and repair
 
 void Tree::refit(std::uint32_t id) {
-  Node& n = nodes[id];
+  Node& n = nodes_[id];
   Aabb bounds;
   std::uint32_t oldest = kNone;
   if (n.leaf) {
-    points.for_each(n.link, n.count, [&](const StoredPoint& s) {
+    points_.for_each(n.link, n.count, [&](const StoredPoint& s) {
       bounds.grow(s.p[0], s.p[1], s.p[2]);
       oldest = std::min(oldest, s.stamp);
     });
   } else {
     std::uint32_t count = 0;
     for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = nodes.child(id, o);
+      const std::uint32_t ch = nodes_.child(id, o);
       if (ch == kNone) continue;
-      count += nodes[ch].count;
-      bounds.merge(nodes[ch].bounds);
-      oldest = std::min(oldest, nodes[ch].oldest);
+      count += nodes_[ch].count;
+      bounds.merge(nodes_[ch].bounds);
+      oldest = std::min(oldest, nodes_[ch].oldest);
     }
-    nodes[id].count = count;
+    nodes_[id].count = count;
   }
-  nodes[id].bounds = bounds;
-  nodes[id].oldest = oldest;
+  nodes_[id].bounds = bounds;
+  nodes_[id].oldest = oldest;
 }
 
 void Tree::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
-  Node& n = nodes[id];
+  if (id == root_) root_ = kNone;
+  Node& n = nodes_[id];
   if (n.leaf) {
     if (out) {
-      points.drain(n.link, n.count, *out);
+      points_.drain(n.link, n.count, *out);
     } else {
-      points.release(n.link);
+      points_.release(n.link);
     }
   } else {
     for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = nodes.child(id, o);
+      const std::uint32_t ch = nodes_.child(id, o);
       if (ch != kNone) dissolve(ch, out);
     }
   }
-  nodes.release(id);
+  nodes_.release(id);
 }
 
-void Tree::drop(std::uint32_t id) {
-  last.pruned += nodes[id].count;
-  if (cfg.density_cap.enabled()) {
+void Tree::drop(std::uint32_t id, UpdateStats& stats) {
+  stats.pruned += nodes_[id].count;
+  if (cfg_.density_cap.enabled()) {
     walk_points(id, [&](const StoredPoint& s) { forget(s); });
   }
   dissolve(id, nullptr);
 }
 
+void Tree::filter_leaf(std::uint32_t id, const Box& box, UpdateStats& stats) {
+  Node& n = nodes_[id];
+  n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) { return keeps(s, box, stats); });
+  refit(id);
+}
+
+void Tree::take_points(std::vector<StoredPoint>& out) {
+  if (root_ != kNone) dissolve(root_, &out);
+}
+
 bool Tree::should_collapse(std::uint32_t id) const {
-  const Node& n = nodes[id];
-  return !n.leaf && n.depth >= min_leaf_depth && n.count <= cfg.leaf_capacity;
+  const Node& n = nodes_[id];
+  return !n.leaf && n.depth >= min_leaf_depth_ && n.count <= cfg_.leaf_capacity;
 }
 
 void Tree::collapse(std::uint32_t id) {
-  const std::size_t base = scratch.size();
+  const std::size_t base = scratch_.size();
   for (int o = 0; o < 8; ++o) {
-    const std::uint32_t ch = nodes.child(id, o);
-    if (ch != kNone) dissolve(ch, &scratch);
+    const std::uint32_t ch = nodes_.child(id, o);
+    if (ch != kNone) dissolve(ch, &scratch_);
   }
-  nodes.make_leaf_of_inner(id);
-  Node& n = nodes[id];
+  nodes_.make_leaf_of_inner(id);
+  Node& n = nodes_[id];
   n.count = 0;
-  points.append(n.link, 0, scratch.data() + base, scratch.data() + scratch.size());
-  n.count = std::uint32_t(scratch.size() - base);
-  scratch.resize(base);
+  points_.append(n.link, 0, scratch_.data() + base, scratch_.data() + scratch_.size());
+  n.count = std::uint32_t(scratch_.size() - base);
+  scratch_.resize(base);
 }
 
 // ---------------------------------------------------------------------------------------------
 // Start table
 
 std::int64_t Tree::start_slot(const Cell& cell) const {
-  const std::int64_t side = lattice.side(start.depth);
+  const std::int64_t side = lattice_.side(start_.depth);
   std::int64_t slot = 0;
   for (int a = 2; a >= 0; --a) {
-    const std::int64_t rel = (cell.lo[a] - root_cell.lo[a]) / side;
-    if (cell.lo[a] < root_cell.lo[a] || rel >= start.per_axis) return -1;
-    slot = slot * start.per_axis + rel;
+    const std::int64_t rel = (cell.lo[a] - root_cell_.lo[a]) / side;
+    if (cell.lo[a] < root_cell_.lo[a] || rel >= start_.per_axis) return -1;
+    slot = slot * start_.per_axis + rel;
   }
   return slot;
 }
 
 void Tree::note_created(std::uint32_t id, const Cell& cell) {
-  if (start.depth == 0 || cell.depth != start.depth) return;
+  if (start_.depth == 0 || cell.depth != start_.depth) return;
   const std::int64_t slot = start_slot(cell);
-  if (slot >= 0) start.slots[std::size_t(slot)] = id;
+  if (slot >= 0) start_.slots[std::size_t(slot)] = id;
 }
 
 void Tree::rebuild_start_table(int depth) {
-  start.depth = depth;
-  start.per_axis = std::int64_t{1} << depth;
-  start.slots.assign(depth == 0 ? 0 : std::size_t(start.per_axis * start.per_axis * start.per_axis),
+  start_.depth = depth;
+  start_.per_axis = std::int64_t{1} << depth;
+  start_.slots.assign(depth == 0 ? 0 : std::size_t(start_.per_axis * start_.per_axis * start_.per_axis),
                      kNone);
   if (depth == 0) return;
   auto walk = [&](auto&& self, std::uint32_t id, const Cell& cell) -> void {
@@ -323,13 +450,13 @@ void Tree::rebuild_start_table(int depth) {
       note_created(id, cell);
       return;
     }
-    if (nodes[id].leaf) return;
+    if (nodes_[id].leaf) return;
     for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = nodes.child(id, o);
-      if (ch != kNone) self(self, ch, lattice.child(cell, o));
+      const std::uint32_t ch = nodes_.child(id, o);
+      if (ch != kNone) self(self, ch, lattice_.child(cell, o));
     }
   };
-  walk(walk, root, root_cell);
+  walk(walk, root_, root_cell_);
 }
 
 }  // namespace eco::detail

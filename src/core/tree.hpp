@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace eco::detail {
@@ -27,118 +28,145 @@ struct StartTable {
   std::vector<std::uint32_t> slots;
 };
 
-struct Tree {
+/// The storage behind an EgoOctree (nodes, leaf blocks, lattice, density counts) and the
+/// structural operations the update stages and the baselines compose. Everything it holds is
+/// private: queries read it through the const accessors; stages change it through the operations,
+/// and count what they do in the UpdateStats they are handed.
+class Tree {
+ public:
   explicit Tree(const Config& config);
 
-  Config cfg;
-  NodeStore nodes;
-  PointStore points;
-  std::uint32_t root = kNone;
-  Cell root_cell;
-  Lattice lattice;
-  int min_leaf_depth = 0;  // k in Quantised mode (the top k levels are always inner), else 0
+  // --- reading --------------------------------------------------------------------------------
+  [[nodiscard]] const Config& config() const { return cfg_; }
+  [[nodiscard]] const NodeStore& nodes() const { return nodes_; }
+  [[nodiscard]] const PointStore& points() const { return points_; }
+  [[nodiscard]] std::uint32_t root() const { return root_; }
+  [[nodiscard]] const Cell& root_cell() const { return root_cell_; }
+  [[nodiscard]] const Lattice& lattice() const { return lattice_; }
+  /// k in Quantised mode (the top k levels are always inner), else 0.
+  [[nodiscard]] int min_leaf_depth() const { return min_leaf_depth_; }
+  [[nodiscard]] std::size_t size() const { return root_ == kNone ? 0 : nodes_[root_].count; }
+  /// Bytes held: nodes, leaf blocks, start table, working buffers, density counts.
+  [[nodiscard]] std::size_t bytes() const;
 
-  std::optional<Motion> motion;  // the current frame's (set_motion); none before the first
-  UpdateStats last;
-
-  StartTable start;
-  CellCounts density;  // points per density-cap cell, kept while the cap is on
-  WorldGrid density_grid{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor (set_motion)
-  std::vector<StoredPoint> scratch;  // points of a leaf being split or a subtree collapsed
-  struct BatchBuffers {  // insert_batch's and shift-in's, kept so that no frame pays for fresh pages
-    std::vector<StoredPoint> scan, points;
-    std::vector<std::uint32_t> slot_of, group_start, group_end;
-  } batch_buffers;
-
-  // --- the current frame ------------------------------------------------------------------
+  /// The current frame's motion (set_motion); none before the first.
+  [[nodiscard]] const std::optional<Motion>& motion() const { return motion_; }
   [[nodiscard]] const Eigen::Isometry3d& pose() const {
     static const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
-    return motion ? motion->pose : identity;
+    return motion_ ? motion_->pose : identity;
   }
-  [[nodiscard]] Eigen::Vector3d anchor() const { return motion ? motion->anchor : Eigen::Vector3d::Zero(); }
-  [[nodiscard]] Box box() const { return motion ? motion->box : Box{}; }
+  [[nodiscard]] Eigen::Vector3d anchor() const { return motion_ ? motion_->anchor : Eigen::Vector3d::Zero(); }
+  [[nodiscard]] Box box() const { return motion_ ? motion_->box : Box{}; }
   /// Frames taken in so far (the current frame's number).
-  [[nodiscard]] std::uint32_t frame() const { return motion ? motion->frame : 0; }
+  [[nodiscard]] std::uint32_t frame() const { return motion_ ? motion_->frame : 0; }
 
-  // --- geometry -----------------------------------------------------------------------------
   /// Anchor-frame float coordinates of a world point (the stored representation).
   [[nodiscard]] std::array<float, 3> to_stored(const Eigen::Vector3d& world) const;
   [[nodiscard]] Eigen::Vector3d to_world(const std::array<float, 3>& stored) const;
-  /// Whether held point `s` stays: inside `box` and within the age limit. Counts what it drops
-  /// in `last` (pruned takes precedence over aged) and takes it out of the density counts.
-  bool keeps(const StoredPoint& s, const Box& box) {
-    if (!box.contains(s.p[0], s.p[1], s.p[2])) {
-      ++last.pruned;
-      forget(s);
-      return false;
-    }
-    if (s.stamp < age_cutoff()) {
-      ++last.aged_out;
-      forget(s);
-      return false;
-    }
-    return true;
-  }
-  /// Enters a new frame (stage 1): its motion, and the density grid seen from its anchor.
-  void set_motion(const Motion& m) {
-    motion = m;
-    density_grid = WorldGrid({m.anchor[0], m.anchor[1], m.anchor[2]}, cfg.density_cap.cell_size);
-  }
-  /// The density-cap cell of stored point p, as CellCounts names it.
-  [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
-    return CellCounts::key(density_grid.index(p));
-  }
-  /// Takes a point that leaves the tree out of the density counts.
-  void forget(const StoredPoint& s) {
-    if (cfg.density_cap.enabled()) density.remove(density_key(s.p));
-  }
   /// Points stamped before this frame are past the age limit (0 while no limit applies).
   [[nodiscard]] std::uint32_t age_cutoff() const {
-    const std::uint32_t age = cfg.max_age_frames;
+    const std::uint32_t age = cfg_.max_age_frames;
     return age > 0 && frame() > age ? frame() - age : 0;
   }
+  /// Calls f(const StoredPoint&) for every point below `id`.
+  template <class F>
+  void walk_points(std::uint32_t id, F&& f) const {
+    const Node& n = nodes_[id];
+    if (n.leaf) {
+      points_.for_each(n.link, n.count, f);
+      return;
+    }
+    for (int o = 0; o < 8; ++o) {
+      const std::uint32_t ch = nodes_.child(id, o);
+      if (ch != kNone) walk_points(ch, f);
+    }
+  }
 
-  // --- structure ----------------------------------------------------------------------------
+  // --- the frame --------------------------------------------------------------------------------
+  /// Enters a new frame (stage 1): its motion, and the density grid seen from its anchor.
+  void set_motion(const Motion& m);
+  /// Whether point `s` may stay: inside `box` and within the age limit. A point that may not
+  /// is counted in `stats` (pruned before aged) and taken out of the density counts.
+  bool keeps(const StoredPoint& s, const Box& box, UpdateStats& stats);
+  /// Counts the density cells of `held` anew (after the precision origin moved, their keys did).
+  void recount_density(const std::vector<StoredPoint>& held);
+
+  // --- insertion --------------------------------------------------------------------------------
   /// Inserts every point of `batch` (each in the root cell), reordering it: the points are
   /// partitioned by octant top-down from the start table's depth, so each node on their way
   /// is visited once per batch, not once per point.
   void insert_batch(std::vector<StoredPoint>& batch);
-  /// Gives back the working buffers' memory when it is far above the `used` points a frame needs
-  /// now (a first frame that took a whole map in), so they keep what steady frames use.
-  void trim_buffers(std::size_t used);
-  /// Bytes held by the working buffers.
-  [[nodiscard]] std::size_t buffer_bytes() const;
+  /// Inserts the new points `collect(std::vector<StoredPoint>&)` appends, in a buffer the tree
+  /// keeps (no frame pays for fresh pages); returns how many.
+  template <class Collect>
+  std::size_t insert_collected(Collect&& collect) {
+    std::vector<StoredPoint>& batch = batch_buffers_.scan;
+    batch.clear();
+    collect(batch);
+    const std::size_t n = batch.size();
+    insert_batch(batch);
+    trim_buffers(n);
+    batch.clear();
+    return n;
+  }
+  /// Counts one more point in p's density cell unless it holds the cap already; says whether it did.
+  bool admit_by_density(const std::array<float, 3>& p) {
+    return density_.add_below(density_key(p), cfg_.density_cap.max_points);
+  }
+  /// Fills the start table (where insertion starts) from the current tree at `depth`.
+  void rebuild_start_table(int depth);
+
+  // --- removal and repair -----------------------------------------------------------------------
+  /// Releases the subtree at `id` whose points leave the tree (counted as pruned).
+  void drop(std::uint32_t id, UpdateStats& stats);
+  /// Keeps the points of leaf `id` that keeps() keeps, and refits it.
+  void filter_leaf(std::uint32_t id, const Box& box, UpdateStats& stats);
+  /// Releases the subtree at `id` (and the node itself; the root leaves the tree without one);
+  /// appends its points to `out` if given.
+  void dissolve(std::uint32_t id, std::vector<StoredPoint>* out);
+  /// Unlinks child `octant` of inner node `id` (released, or handed on by dissolve/drop).
+  void unlink_child(std::uint32_t id, int octant) { nodes_.child(id, octant) = kNone; }
   /// Recomputes count, bounds and oldest stamp of `id` from its points or children.
   void refit(std::uint32_t id);
-  /// Releases the subtree at `id` (and the node itself); appends its points to `out` if given.
-  void dissolve(std::uint32_t id, std::vector<StoredPoint>* out);
-  /// Releases the subtree at `id` whose points leave the tree (counted as pruned).
-  void drop(std::uint32_t id);
-  /// Turns inner node `id` into one leaf holding all the points below it.
-  void collapse(std::uint32_t id);
   /// Whether `id` (inner) holds so few points that it should be one leaf.
   [[nodiscard]] bool should_collapse(std::uint32_t id) const;
-  /// Calls f(const StoredPoint&) for every point below `id`.
-  template <class F>
-  void walk_points(std::uint32_t id, F&& f) const {
-    const Node& n = nodes[id];
-    if (n.leaf) {
-      points.for_each(n.link, n.count, f);
-      return;
-    }
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = nodes.child(id, o);
-      if (ch != kNone) walk_points(ch, f);
-    }
-  }
-  /// Creates the root node for root_cell (inner in Quantised mode, an empty leaf in Exact mode).
-  void make_root();
-  /// Fills the start table from the current tree.
-  void rebuild_start_table(int depth);
-  /// The child of inner node `id` (cell `cell`) at `octant`, created empty if missing.
-  std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
+  /// Turns inner node `id` into one leaf holding all the points below it.
+  void collapse(std::uint32_t id);
+  /// Appends every held point to `out` and leaves the tree without a root; the density counts
+  /// stay (the points are meant to come back).
+  void take_points(std::vector<StoredPoint>& out);
+
+  // --- the root ---------------------------------------------------------------------------------
+  /// Makes an empty root for `cell` under `lattice` (inner in Quantised mode, a leaf in Exact
+  /// mode); the tree must be empty or hold nothing worth keeping (its root is released).
+  void place_root(const Cell& cell, const Lattice& lattice);
+  /// Moves the lattice's walls (Exact re-centring); the nodes keep their cells' indices.
+  void move_lattice(const Lattice& lattice) { lattice_ = lattice; }
+  /// Quantised re-centring, first half: releases the nodes above `depth` and hands back the
+  /// subtrees at `depth` with their cells; the tree is left without a root.
+  std::vector<std::pair<std::uint32_t, Cell>> detach_subtrees(int depth);
+  /// Links subtree `id` (cell `cell`, below the root) under the root, creating the inner nodes
+  /// on its way; refit_above() then fixes their counts and bounds.
+  void attach_subtree(std::uint32_t id, const Cell& cell);
+  /// Refits every node above `depth`, bottom up.
+  void refit_above(int depth);
+  /// Doubles the root's cell: a new root whose child `octant` is the old root (i-Octree's growth
+  /// toward points outside). Every depth moves one down and the lattice gains a level.
+  void grow_root(int octant);
 
  private:
+  /// The density-cap cell of stored point p, as CellCounts names it.
+  [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
+    return CellCounts::key(density_grid_.index(p));
+  }
+  /// Takes a point that leaves the tree out of the density counts.
+  void forget(const StoredPoint& s) {
+    if (cfg_.density_cap.enabled()) density_.remove(density_key(s.p));
+  }
+  /// Creates the root node for root_cell_ (inner in Quantised mode, an empty leaf in Exact mode).
+  void make_root();
+  /// The child of inner node `id` (cell `cell`) at `octant`, created empty if missing.
+  std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
   void split(std::uint32_t id, const Cell& cell);
   /// Inserts points [from, to), all inside `cell`, into the subtree at `id`, partitioning them
   /// into `temp` (room for as many; both ranges are overwritten); the caller adds them to the
@@ -152,6 +180,28 @@ struct Tree {
   void prefetch_start_node(std::size_t from, const std::vector<std::uint32_t>& first) const;
   void note_created(std::uint32_t id, const Cell& cell);
   std::int64_t start_slot(const Cell& cell) const;
+  /// Gives back the working buffers' memory when it is far above the `used` points a frame needs
+  /// now (a first frame that took a whole map in), so they keep what steady frames use.
+  void trim_buffers(std::size_t used);
+  /// Bytes held by the working buffers.
+  [[nodiscard]] std::size_t buffer_bytes() const;
+
+  Config cfg_;
+  NodeStore nodes_;
+  PointStore points_;
+  std::uint32_t root_ = kNone;
+  Cell root_cell_;
+  Lattice lattice_;
+  int min_leaf_depth_ = 0;
+  std::optional<Motion> motion_;
+  StartTable start_;
+  CellCounts density_;  // points per density-cap cell, kept while the cap is on
+  WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
+  std::vector<StoredPoint> scratch_;  // points of a leaf being split or a subtree collapsed
+  struct BatchBuffers {  // insert_batch's and insert_collected's, kept so that no frame pays for fresh pages
+    std::vector<StoredPoint> scan, points;
+    std::vector<std::uint32_t> slot_of, group_start, group_end;
+  } batch_buffers_;
 };
 
 }  // namespace eco::detail

@@ -52,7 +52,7 @@ inline void require_positive(double v, const char* what, const char* name, bool 
 /// `whole` true when an ancestor was taken whole (the point needs no test).
 template <class Keep, class Visit>
 void walk_leaves(const Tree& t, std::uint32_t id, Keep&& keep, Visit&& visit, bool whole = false) {
-  const Node& n = t.nodes[id];
+  const Node& n = t.nodes()[id];
   if (n.count == 0) return;
   if (!whole) {
     const int verdict = keep(n.bounds);
@@ -60,11 +60,11 @@ void walk_leaves(const Tree& t, std::uint32_t id, Keep&& keep, Visit&& visit, bo
     whole = verdict == 2;
   }
   if (n.leaf) {
-    t.points.for_each(n.link, n.count, [&](const StoredPoint& s) { visit(s, whole); });
+    t.points().for_each(n.link, n.count, [&](const StoredPoint& s) { visit(s, whole); });
     return;
   }
   for (int o = 0; o < 8; ++o) {
-    const std::uint32_t ch = t.nodes.child(id, o);
+    const std::uint32_t ch = t.nodes().child(id, o);
     if (ch != kNone) walk_leaves(t, ch, keep, visit, whole);
   }
 }

@@ -21,7 +21,7 @@ class KnnSearch {
 
   /// The number found: min(k, points held).
   std::size_t run() {
-    if (!out_.empty() && t_.root != detail::kNone) visit(t_.root);
+    if (!out_.empty() && t_.root() != detail::kNone) visit(t_.root());
     return found_;
   }
 
@@ -39,9 +39,9 @@ class KnnSearch {
   }
 
   void visit(std::uint32_t id) {
-    const detail::Node& n = t_.nodes[id];
+    const detail::Node& n = t_.nodes()[id];
     if (n.leaf) {
-      const detail::PointSpan c = t_.points.span(n.link, n.count);
+      const detail::PointSpan c = t_.points().span(n.link, n.count);
       for (std::uint32_t i = 0; i < c.size; ++i) {
         const double dx = double(c.x[i]) - q_[0];
         const double dy = double(c.y[i]) - q_[1];
@@ -54,9 +54,9 @@ class KnnSearch {
     std::array<std::pair<double, std::uint32_t>, 8> order;
     int m = 0;
     for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = t_.nodes.child(id, o);
-      if (ch != detail::kNone && t_.nodes[ch].count > 0) {
-        order[std::size_t(m++)] = {t_.nodes[ch].bounds.sq_dist(q_), ch};
+      const std::uint32_t ch = t_.nodes().child(id, o);
+      if (ch != detail::kNone && t_.nodes()[ch].count > 0) {
+        order[std::size_t(m++)] = {t_.nodes()[ch].bounds.sq_dist(q_), ch};
       }
     }
     for (int i = 1; i < m; ++i) {  // insertion sort: at most eight children

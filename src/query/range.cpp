@@ -16,9 +16,9 @@ std::vector<Neighbor> radius_query(const Tree& t, const Eigen::Vector3d& query, 
   const std::array<double, 3> q = to_anchor_frame(t, query, frame);
   const double r2 = radius * radius;
   std::vector<Neighbor> out;
-  if (t.root == kNone) return out;
+  if (t.root() == kNone) return out;
   walk_leaves(
-      t, t.root, [&](const Aabb& b) { return b.sq_dist(q) <= r2 ? 1 : 0; },
+      t, t.root(), [&](const Aabb& b) { return b.sq_dist(q) <= r2 ? 1 : 0; },
       [&](const StoredPoint& s, bool) {
         const double dx = double(s.p[0]) - q[0];
         const double dy = double(s.p[1]) - q[1];
@@ -46,9 +46,9 @@ std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Vector3d& lo,
   b.lo = to_anchor_frame(t, lo, frame);
   b.hi = to_anchor_frame(t, hi, frame);
   std::vector<Eigen::Vector3d> out;
-  if (t.root == kNone) return out;
+  if (t.root() == kNone) return out;
   walk_leaves(
-      t, t.root, [&](const Aabb& bounds) { return b.misses(bounds) ? 0 : b.contains_all(bounds) ? 2 : 1; },
+      t, t.root(), [&](const Aabb& bounds) { return b.misses(bounds) ? 0 : b.contains_all(bounds) ? 2 : 1; },
       [&](const StoredPoint& s, bool whole) {
         if (whole || b.contains(s.p[0], s.p[1], s.p[2])) out.push_back(from_stored(t, s.p, frame));
       });

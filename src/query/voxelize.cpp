@@ -27,17 +27,17 @@ namespace {
 /// The voxel's depth in the lattice, as `unit_shift`: a voxel is 2^unit_shift lattice units
 /// (negative: finer than the smallest cell). None when voxels do not fall on the lattice.
 std::optional<int> lattice_shift(const Tree& t, double resolution) {
-  if (t.cfg.recentring != Recentring::Quantised || !(t.cfg.voxel_size > 0.0)) return std::nullopt;
-  const int k = int(t.cfg.quantum_levels);
-  for (int shift = t.lattice.max_depth - k; shift >= -30; --shift) {
-    if (std::ldexp(t.lattice.unit, shift) == resolution) return shift;
+  if (t.config().recentring != Recentring::Quantised || !(t.config().voxel_size > 0.0)) return std::nullopt;
+  const int k = int(t.config().quantum_levels);
+  for (int shift = t.lattice().max_depth - k; shift >= -30; --shift) {
+    if (std::ldexp(t.lattice().unit, shift) == resolution) return shift;
   }
   return std::nullopt;
 }
 
 void require_representable(const Tree& t, double resolution) {
-  if (t.root == kNone || t.nodes[t.root].count == 0) return;
-  const Aabb& b = t.nodes[t.root].bounds;
+  if (t.root() == kNone || t.nodes()[t.root()].count == 0) return;
+  const Aabb& b = t.nodes()[t.root()].bounds;
   double reach = 0.0;
   for (int a = 0; a < 3; ++a) {
     reach = std::max({reach, std::abs(t.anchor()[a] + double(b.lo[a])), std::abs(t.anchor()[a] + double(b.hi[a]))});
@@ -62,11 +62,11 @@ class LatticeVoxels {
       : t_(t),
         grid_({t.anchor()[0], t.anchor()[1], t.anchor()[2]}, resolution),
         shift_(shift),
-        depth_(t.lattice.max_depth - shift),
+        depth_(t.lattice().max_depth - shift),
         out_(out) {}
 
   void collect(std::uint32_t id, const Cell& cell) {
-    const Node& n = t_.nodes[id];
+    const Node& n = t_.nodes()[id];
     if (n.count == 0) return;
     if (cell.depth == depth_) {  // the node is one voxel
       out_.push_back({cell.lo[0] >> shift_, cell.lo[1] >> shift_, cell.lo[2] >> shift_});
@@ -80,10 +80,10 @@ class LatticeVoxels {
       }
       return;
     }
-    t_.nodes.prefetch_children(id);
+    t_.nodes().prefetch_children(id);
     for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = t_.nodes.child(id, o);
-      if (ch != kNone) collect(ch, t_.lattice.child(cell, o));
+      const std::uint32_t ch = t_.nodes().child(id, o);
+      if (ch != kNone) collect(ch, t_.lattice().child(cell, o));
     }
   }
 
@@ -96,16 +96,16 @@ class LatticeVoxels {
   void collect_masked(const Node& n, const Cell& cell) {
     const int levels = depth_ - cell.depth;
     const int per_axis = 1 << levels;
-    const std::int64_t step = t_.lattice.side(depth_);
+    const std::int64_t step = t_.lattice().side(depth_);
     std::array<std::array<float, 8>, 3> walls{};  // inner walls, then +inf: the counts stop there
     for (int a = 0; a < 3; ++a) {
       walls[a].fill(std::numeric_limits<float>::infinity());
       for (int j = 1; j < per_axis; ++j) {
-        walls[a][std::size_t(j - 1)] = float_at_or_above(t_.lattice.wall(a, cell.lo[a] + j * step));
+        walls[a][std::size_t(j - 1)] = float_at_or_above(t_.lattice().wall(a, cell.lo[a] + j * step));
       }
     }
     std::array<std::uint64_t, 8> marked{};
-    t_.points.for_each(n.link, n.count, [&](const StoredPoint& s) {
+    t_.points().for_each(n.link, n.count, [&](const StoredPoint& s) {
       std::array<int, 3> sub{};
       for (int a = 0; a < 3; ++a) {
         for (int j = 0; j + 1 < per_axis; ++j) sub[a] += int(s.p[a] >= walls[a][std::size_t(j)]);
@@ -126,7 +126,7 @@ class LatticeVoxels {
   /// A leaf far coarser than a voxel: the points' keys, made unique within the leaf.
   void collect_sorted(const Node& n) {
     const std::size_t base = out_.size();
-    t_.points.for_each(n.link, n.count, [&](const StoredPoint& s) {
+    t_.points().for_each(n.link, n.count, [&](const StoredPoint& s) {
       const VoxelKey key{grid_.index(0, s.p[0]), grid_.index(1, s.p[1]), grid_.index(2, s.p[2])};
       if (out_.size() == base || out_.back() != key) out_.push_back(key);
     });
@@ -147,16 +147,16 @@ std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution) {
   require_positive(resolution, "voxel_keys", "resolution", false);
   require_representable(t, resolution);
   std::vector<VoxelKey> keys;
-  if (t.root == kNone) return keys;
+  if (t.root() == kNone) return keys;
   if (const std::optional<int> shift = lattice_shift(t, resolution)) {
-    LatticeVoxels(t, resolution, *shift, keys).collect(t.root, t.root_cell);
+    LatticeVoxels(t, resolution, *shift, keys).collect(t.root(), t.root_cell());
     return keys;
   }
-  keys.reserve(t.nodes[t.root].count);
+  keys.reserve(t.nodes()[t.root()].count);
   const Eigen::Vector3d anchor = t.anchor();
   const WorldGrid grid({anchor[0], anchor[1], anchor[2]}, resolution);
   walk_leaves(
-      t, t.root, [](const Aabb&) { return 2; },
+      t, t.root(), [](const Aabb&) { return 2; },
       [&](const StoredPoint& s, bool) {
         const VoxelKey key{grid.index(0, s.p[0]), grid.index(1, s.p[1]), grid.index(2, s.p[2])};
         if (keys.empty() || keys.back() != key) keys.push_back(key);  // neighbours often repeat

@@ -14,21 +14,16 @@ Eigen::Vector3d nearest_origin(const Eigen::Vector3d& position) {
 
 /// Takes every held point out of the tree, re-expressed against the new origin (rounded once
 /// more to float); points the rounding takes out of the box are pruned.
-std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion) {
+std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion, UpdateStats& stats) {
   const Eigen::Vector3d shift = *motion.origin_shift;  // exact: multiples of kOriginStep
-  std::vector<StoredPoint> held, displaced;
-  if (tree.root != kNone) tree.dissolve(tree.root, &held);
-  tree.root = kNone;
-  tree.density.clear();  // cells are counted anew from the re-rounded points
-  for (StoredPoint s : held) {
-    s.p = rebased(s.p, shift);
-    if (!tree.keeps(s, motion.box)) continue;
-    displaced.push_back(s);
-    if (tree.cfg.density_cap.enabled()) tree.density.add(tree.density_key(s.p));
-  }
-  tree.last.rebased = true;
-  tree.last.rebuilt_subtrees += 1;
-  return displaced;
+  std::vector<StoredPoint> held;
+  tree.take_points(held);
+  for (StoredPoint& s : held) s.p = rebased(s.p, shift);
+  std::erase_if(held, [&](const StoredPoint& s) { return !tree.keeps(s, motion.box, stats); });
+  tree.recount_density(held);  // every cell key moved with the origin
+  stats.rebased = true;
+  stats.rebuilt_subtrees += 1;
+  return held;
 }
 
 }  // namespace
@@ -57,16 +52,16 @@ Motion next_motion(const Eigen::Isometry3d& pose, const std::optional<Motion>& l
   return m;
 }
 
-EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor) {
-  EgoMotion out{next_motion(world_T_sensor, tree.motion, tree.cfg.box_side), {}};
+EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor, UpdateStats& stats) {
+  EgoMotion out{next_motion(world_T_sensor, tree.motion(), tree.config().box_side), {}};
   tree.set_motion(out.motion);  // the density keys of the re-expressed points need the new origin
-  if (out.motion.origin_shift) out.displaced = rebase(tree, out.motion);
+  if (out.motion.origin_shift) out.displaced = rebase(tree, out.motion, stats);
   return out;
 }
 
 Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor) {
-  tree.set_motion(next_motion(world_T_sensor, tree.motion, tree.cfg.box_side, /*moves_origin=*/false));
-  return *tree.motion;
+  tree.set_motion(next_motion(world_T_sensor, tree.motion(), tree.config().box_side, /*moves_origin=*/false));
+  return *tree.motion();
 }
 
 }  // namespace eco::detail

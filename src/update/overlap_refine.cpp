@@ -7,13 +7,14 @@ namespace eco::detail {
 namespace {
 
 /// Where the root cell and the lattice go for the current pose.
-std::pair<Cell, Lattice> place_root(const Tree& t, const Motion& motion) {
-  Lattice lattice = t.lattice;
+std::pair<Cell, Lattice> root_for(const Tree& t, const Motion& motion) {
+  const Config& cfg = t.config();
+  Lattice lattice = t.lattice();
   Cell cell;
   const int depth = lattice.max_depth;
-  if (t.cfg.recentring == Recentring::Quantised) {
-    const int k = int(t.cfg.quantum_levels);
-    const double q = t.cfg.quantum();
+  if (cfg.recentring == Recentring::Quantised) {
+    const int k = int(cfg.quantum_levels);
+    const double q = cfg.quantum();
     lattice.unit = std::ldexp(q, k - depth);
     for (int a = 0; a < 3; ++a) {
       lattice.origin[a] = -motion.anchor[a];
@@ -21,99 +22,51 @@ std::pair<Cell, Lattice> place_root(const Tree& t, const Motion& motion) {
       cell.lo[a] = (m - (std::int64_t{1} << (k - 1))) * (std::int64_t{1} << (depth - k));
     }
   } else {
-    lattice.unit = std::ldexp(t.cfg.box_side, -depth);
+    lattice.unit = std::ldexp(cfg.box_side, -depth);
     lattice.origin = motion.box.lo;
   }
   return {cell, lattice};
 }
 
-// --- Quantised: re-link the depth-k subtrees ---------------------------------------------------
-
-class Relinker {
- public:
-  Relinker(Tree& tree, std::vector<StoredPoint>& displaced)
-      : t_(tree), displaced_(displaced), k_(int(tree.cfg.quantum_levels)) {}
-
-  void run(const Cell& new_root) {
-    collect(t_.root, t_.root_cell);
-    t_.root_cell = new_root;
-    t_.make_root();
-    for (const auto& [id, cell] : subtrees_) {
-      if (t_.lattice.encloses(new_root, cell)) {
-        attach(id, cell);
-        ++t_.last.relinked_subtrees;
-      } else {  // cannot hold points after shift-out; dissolved for safety all the same
-        t_.dissolve(id, &displaced_);
-        ++t_.last.rebuilt_subtrees;
-      }
+/// Quantised: re-link the lattice-fixed depth-k subtrees under new top levels.
+void relink(Tree& t, const Cell& new_root, std::vector<StoredPoint>& displaced, UpdateStats& stats) {
+  const int k = int(t.config().quantum_levels);
+  const auto subtrees = t.detach_subtrees(k);
+  t.place_root(new_root, t.lattice());
+  for (const auto& [id, cell] : subtrees) {
+    if (t.lattice().encloses(new_root, cell)) {
+      t.attach_subtree(id, cell);
+      ++stats.relinked_subtrees;
+    } else {  // cannot hold points after shift-out; dissolved for safety all the same
+      t.dissolve(id, &displaced);
+      ++stats.rebuilt_subtrees;
     }
-    refit_top(t_.root);
   }
+  t.refit_above(k);
+}
 
- private:
-  /// Records the depth-k subtrees and releases the inner nodes above them.
-  void collect(std::uint32_t id, const Cell& cell) {
-    if (cell.depth == k_) {
-      subtrees_.emplace_back(id, cell);
-      return;
-    }
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = t_.nodes.child(id, o);
-      if (ch != kNone) collect(ch, t_.lattice.child(cell, o));
-    }
-    t_.nodes.release(id);
-  }
-
-  void attach(std::uint32_t id, const Cell& cell) {
-    std::uint32_t parent = t_.root;
-    Cell at = t_.root_cell;
-    while (at.depth < k_ - 1) {
-      const int o = t_.lattice.octant_of(at, cell);
-      parent = t_.child_or_new(parent, at, o);
-      at = t_.lattice.child(at, o);
-    }
-    const int o = t_.lattice.octant_of(at, cell);
-    t_.nodes.child(parent, o) = id;
-    t_.nodes[id].parent = parent;
-    t_.nodes[id].octant = static_cast<std::uint8_t>(o);
-  }
-
-  void refit_top(std::uint32_t id) {
-    if (t_.nodes[id].depth >= k_) return;
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = t_.nodes.child(id, o);
-      if (ch != kNone) refit_top(ch);
-    }
-    t_.refit(id);
-  }
-
-  Tree& t_;
-  std::vector<StoredPoint>& displaced_;
-  int k_;
-  std::vector<std::pair<std::uint32_t, Cell>> subtrees_;
-};
-
-// --- Exact: keep what still fits, rebuild the rest ---------------------------------------------
-
-/// Node id fits `cell` under the new lattice; checks its children against their moved octants.
-void refit_exact(Tree& t, std::uint32_t id, const Cell& cell, std::vector<StoredPoint>& displaced) {
-  if (t.nodes[id].leaf) return;
+/// Exact: node id fits `cell` under the moved lattice; checks its children against their moved
+/// octants, keeps what still fits and hands the rest on in `displaced`.
+void refit_exact(Tree& t, std::uint32_t id, const Cell& cell, std::vector<StoredPoint>& displaced,
+                 UpdateStats& stats) {
+  const NodeStore& nodes = t.nodes();
+  if (nodes[id].leaf) return;
   for (int o = 0; o < 8; ++o) {
-    const std::uint32_t ch = t.nodes.child(id, o);
+    const std::uint32_t ch = nodes.child(id, o);
     if (ch == kNone) continue;
-    const Cell child_cell = t.lattice.child(cell, o);
-    if (t.lattice.contains(child_cell, t.nodes[ch].bounds)) {
-      refit_exact(t, ch, child_cell, displaced);
-      if (t.nodes[ch].count == 0) {  // everything below moved out of its octant
+    const Cell child_cell = t.lattice().child(cell, o);
+    if (t.lattice().contains(child_cell, nodes[ch].bounds)) {
+      refit_exact(t, ch, child_cell, displaced, stats);
+      if (nodes[ch].count == 0) {  // everything below moved out of its octant
         t.dissolve(ch, nullptr);
-        t.nodes.child(id, o) = kNone;
-      } else if (id == t.root) {
-        ++t.last.relinked_subtrees;
+        t.unlink_child(id, o);
+      } else if (id == t.root()) {
+        ++stats.relinked_subtrees;
       }
     } else {
       t.dissolve(ch, &displaced);
-      t.nodes.child(id, o) = kNone;
-      ++t.last.rebuilt_subtrees;
+      t.unlink_child(id, o);
+      ++stats.rebuilt_subtrees;
     }
   }
   t.refit(id);
@@ -122,17 +75,16 @@ void refit_exact(Tree& t, std::uint32_t id, const Cell& cell, std::vector<Stored
 
 }  // namespace
 
-std::vector<StoredPoint> refine_overlap(Tree& tree, const Motion& motion, std::vector<StoredPoint> displaced) {
-  const auto [new_root, lattice] = place_root(tree, motion);
-  if (tree.root == kNone) {
-    tree.lattice = lattice;
-    tree.root_cell = new_root;
-    tree.make_root();
-  } else if (tree.cfg.recentring == Recentring::Quantised) {
-    if (new_root.lo != tree.root_cell.lo) Relinker(tree, displaced).run(new_root);
-  } else if (lattice.origin != tree.lattice.origin) {
-    tree.lattice = lattice;
-    refit_exact(tree, tree.root, tree.root_cell, displaced);
+std::vector<StoredPoint> refine_overlap(Tree& tree, const Motion& motion, std::vector<StoredPoint> displaced,
+                                        UpdateStats& stats) {
+  const auto [new_root, lattice] = root_for(tree, motion);
+  if (tree.root() == kNone) {
+    tree.place_root(new_root, lattice);
+  } else if (tree.config().recentring == Recentring::Quantised) {
+    if (new_root.lo != tree.root_cell().lo) relink(tree, new_root, displaced, stats);
+  } else if (lattice.origin != tree.lattice().origin) {
+    tree.move_lattice(lattice);
+    refit_exact(tree, tree.root(), tree.root_cell(), displaced, stats);
   }
   return displaced;
 }

@@ -14,41 +14,49 @@
 
 namespace eco::detail {
 
+/// Every stage counts what it does in the frame's `stats`.
+///
 /// 1. Ego-motion: the new pose, precision origin and ego box (AABBs stay in the world; only the
 ///    query box moves). When the precision origin moved, every held point is re-expressed and
-///    handed back in `displaced` (once per ~2 km). Sets tree.motion.
+///    handed back in `displaced` (once per ~2 km). Enters the motion into the tree.
 struct EgoMotion {
   Motion motion;
   std::vector<StoredPoint> displaced;
 };
-EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor);
+EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor, UpdateStats& stats);
 /// The same for a map that keeps its first precision origin for good (`moves_origin` false in
 /// next_motion): nothing is ever displaced.
 Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor);
 
 /// 2. Shift-out (R_out): drop subtrees whose bounds left motion.box, filter the leaves that
 ///    straddle it, and drop points past the age limit. Subtrees wholly inside are not visited.
-void prune_shift_out(Tree& tree, const Motion& motion);
+void prune_shift_out(Tree& tree, const Motion& motion, UpdateStats& stats);
 
 /// 3. Overlap refinement (R_over): re-centre the root on the sensor. Quantised: re-link the
 ///    lattice-fixed depth-k subtrees under new top levels. Exact: rebuild the subtrees whose bounds
 ///    no longer fit their moved octant. Returns `displaced` with the points of the subtrees it
 ///    took apart, for stage 4 to put back.
-std::vector<StoredPoint> refine_overlap(Tree& tree, const Motion& motion, std::vector<StoredPoint> displaced);
+std::vector<StoredPoint> refine_overlap(Tree& tree, const Motion& motion, std::vector<StoredPoint> displaced,
+                                        UpdateStats& stats);
 
 /// 4. Shift-in (R_in): put `displaced` back, then transform the scan points the insert policy
 ///    admits, pass them through the density cap (in scan order) and insert them as one batch,
 ///    partitioned top-down from the movement-aware start depth rather than the root.
-void insert_shift_in(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint> displaced);
+void insert_shift_in(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint> displaced,
+                     UpdateStats& stats);
 /// Stage 4's parts, for the baselines: where insertion starts (the movement-aware start depth
 /// for `motion`), putting `points` back (left empty, capacity kept), and taking in the scan.
 void place_start_table(Tree& tree, const Motion& motion);
-void reinsert(Tree& tree, std::vector<StoredPoint>& points);
-void insert_scan(Tree& tree, const Motion& motion, ScanView scan);
+void reinsert(Tree& tree, std::vector<StoredPoint>& points, UpdateStats& stats);
+void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats);
 
-/// One update (EgoOctree::update): checks the arguments (the tree unchanged when they are
-/// refused), then runs the four stages. Returns the frame's statistics.
-const UpdateStats& run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
+/// One update (EgoOctree::update): begin_update(), then the four stages. Returns the frame's
+/// statistics.
+UpdateStats run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
+/// Every update's preamble (ECO's and the baselines'): checks the arguments against the tree's
+/// configuration — throwing std::invalid_argument, the tree unchanged, when they are refused —
+/// and returns the frame's statistics, counting the scan.
+UpdateStats begin_update(const Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
 
 /// Throws std::invalid_argument naming `name` and the value unless `pose` is finite and rigid.
 void check_pose(const Eigen::Isometry3d& pose, const char* name);

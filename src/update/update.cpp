@@ -62,16 +62,20 @@ void detail::check_update_arguments(const Eigen::Isometry3d& pose, const char* n
   check_density_grid(pose, config);
 }
 
-const UpdateStats& detail::run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, tree.cfg);
-  tree.last = UpdateStats{};
-  tree.last.scan_points = scan.count;
+UpdateStats detail::begin_update(const Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
+  check_update_arguments(world_T_sensor, "world_T_sensor", scan, tree.config());
+  UpdateStats stats;
+  stats.scan_points = scan.count;
+  return stats;
+}
 
-  auto [motion, displaced] = detail::advance_ego_motion(tree, world_T_sensor);  // 1. pose, box: O(1)
-  detail::prune_shift_out(tree, motion);                                         // 2. R_out
-  displaced = detail::refine_overlap(tree, motion, std::move(displaced));        // 3. R_over
-  detail::insert_shift_in(tree, motion, scan, std::move(displaced));             // 4. R_in
-  return tree.last;
+UpdateStats detail::run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
+  UpdateStats stats = begin_update(tree, world_T_sensor, scan);
+  auto [motion, displaced] = advance_ego_motion(tree, world_T_sensor, stats);      // 1. pose, box: O(1)
+  prune_shift_out(tree, motion, stats);                                            // 2. R_out
+  displaced = refine_overlap(tree, motion, std::move(displaced), stats);           // 3. R_over
+  insert_shift_in(tree, motion, scan, std::move(displaced), stats);                // 4. R_in
+  return stats;
 }
 
 }  // namespace eco
