@@ -6,6 +6,7 @@
 #include "core/cell_counts.hpp"
 #include "core/tree.hpp"
 #include "update/admission.hpp"
+#include "query/queries.hpp"
 #include "update/stages.hpp"
 
 #include <optional>
@@ -25,17 +26,20 @@ class FlatFrame {
     }
   }
 
-  /// Checks the arguments, then moves to `pose`. Returns how far held points must move
-  /// (old origin - new origin) when the precision origin moved, and the scan's admission.
+  /// ECO's preamble and stage 1: checks the arguments, then moves to `pose`. Returns the
+  /// frame's statistics, how far held points must move (old origin - new origin) when the
+  /// precision origin moved, and the scan's admission.
   struct Step {
+    UpdateStats stats;
     std::optional<Eigen::Vector3d> shift;
     detail::Admission admission;
   };
   Step advance(const Eigen::Isometry3d& world_T_sensor, const ScanView& scan) {
-    detail::check_update_arguments(world_T_sensor, "world_T_sensor", scan, cfg_);
-    motion_ = detail::next_motion(world_T_sensor, motion_, cfg_.box_side);  // ECO's stage 1
+    UpdateStats stats = detail::begin_update(cfg_, world_T_sensor, scan);
+    motion_ = detail::next_motion(world_T_sensor, motion_, cfg_.box_side);
+    density_grid_ = detail::WorldGrid({anchor()[0], anchor()[1], anchor()[2]}, cfg_.density_cap.cell_size);
     if (motion_->origin_shift) density_.clear();  // the caller counts the re-expressed points anew
-    return {motion_->origin_shift, detail::admission(*motion_, cfg_.insert_policy)};
+    return {stats, motion_->origin_shift, detail::admission(*motion_, cfg_.insert_policy)};
   }
 
   /// The density cap's verdict on a new point (counted when admitted); true while the cap is off.
@@ -104,8 +108,7 @@ class FlatFrame {
 
  private:
   [[nodiscard]] std::uint64_t key(const std::array<float, 3>& p) const {
-    const VoxelKey v = voxel(p, cfg_.density_cap.cell_size);
-    return detail::CellCounts::key({v.x, v.y, v.z});
+    return detail::CellCounts::key(density_grid_.index(p));
   }
 
   inline static const detail::Motion kStart{};  // identity pose, zero origin: before the first frame
@@ -113,6 +116,7 @@ class FlatFrame {
   Config cfg_;
   std::optional<detail::Motion> motion_;  // the current frame's, as ECO's stage 1 finds it
   detail::CellCounts density_;
+  detail::WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
 };
 
 /// Nearest first, as every query reports neighbours.
@@ -122,11 +126,14 @@ inline bool nearer(const Neighbor& a, const Neighbor& b) { return a.sq_dist < b.
 template <class Points>
 std::vector<VoxelKey> voxel_keys_of_points(const FlatFrame& frame, const Points& held, double res) {
   frame.require_voxel_resolution(res);
+  const detail::WorldGrid grid({frame.anchor()[0], frame.anchor()[1], frame.anchor()[2]}, res);
   std::vector<VoxelKey> keys;
   keys.reserve(held.size());
-  for (const auto& p : held) keys.push_back(frame.voxel({p[0], p[1], p[2]}, res));
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  for (const auto& p : held) {
+    const auto [x, y, z] = grid.index({p[0], p[1], p[2]});
+    keys.push_back({x, y, z});
+  }
+  detail::sort_unique(keys);
   return keys;
 }
 

@@ -44,7 +44,7 @@ GlobalOctree::GlobalOctree(std::string name, const Config& config, bool deletes)
 
 void GlobalOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
   detail::Tree& t = tree_;
-  UpdateStats stats = detail::begin_update(t, world_T_sensor, scan);
+  UpdateStats stats = detail::begin_update(t.config(), world_T_sensor, scan);
   // the precision origin stays where the drive began, like the root
   const detail::Motion motion = detail::advance_ego_motion_fixed_origin(t, world_T_sensor);
   if (t.root() == detail::kNone) t.place_root(detail::Cell{}, first_lattice(t.config(), motion.box));

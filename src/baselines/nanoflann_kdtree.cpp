@@ -42,7 +42,7 @@ class NanoflannKdTree final : public Method {
   [[nodiscard]] std::string name() const override { return "nanoflann"; }
 
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
-    const FlatFrame::Step step = frame_.advance(world_T_sensor, scan);
+    FlatFrame::Step step = frame_.advance(world_T_sensor, scan);
     if (step.shift) {  // re-express against the new origin, as ECO does
       for (auto& p : held_.p) {
         p = detail::rebased(p, *step.shift);
@@ -55,8 +55,7 @@ class NanoflannKdTree final : public Method {
       frame_.forget(p);
       return true;
     });
-    UpdateStats ignored;
-    step.admission.for_each(scan, ignored, [&](const std::array<float, 3>& p) {
+    step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p) {
       if (frame_.admits(p)) held_.p.push_back(p);
     });
     index_ = std::make_unique<KdTree>(3, held_, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));

@@ -22,7 +22,7 @@ class OctreeBase final : public TreeMethod {
 
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
     detail::Tree& t = tree_;
-    UpdateStats stats = detail::begin_update(t, world_T_sensor, scan);
+    UpdateStats stats = detail::begin_update(t.config(), world_T_sensor, scan);
     auto [motion, held] = detail::advance_ego_motion(t, world_T_sensor, stats);  // a moved origin hands back all
     detail::prune_shift_out(t, motion, stats);  // what left the box or aged out
     t.take_points(held);                        // the rest, to be rebuilt from scratch

@@ -37,7 +37,7 @@ class PclOctree final : public Method {
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
     const detail::Box previous = frame_.box();
     const bool first = frame_.frames() == 0;
-    const FlatFrame::Step step = frame_.advance(world_T_sensor, scan);
+    FlatFrame::Step step = frame_.advance(world_T_sensor, scan);
     const detail::Box& box = step.admission.box;
     if (first || step.shift) {
       std::vector<std::array<float, 3>> kept;
@@ -53,8 +53,7 @@ class PclOctree final : public Method {
     } else {
       remove_what_left(previous, box);
     }
-    UpdateStats ignored;
-    step.admission.for_each(scan, ignored, [&](const std::array<float, 3>& p) {
+    step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p) {
       if (!frame_.admits(p)) return;
       octree_->addPointToCloud(pcl::PointXYZ(p[0], p[1], p[2]), cloud_);
       alive_.push_back(true);

@@ -22,7 +22,7 @@ class ScanPass final : public Method {
   [[nodiscard]] bool indexed() const override { return false; }
 
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
-    const FlatFrame::Step step = frame_.advance(world_T_sensor, scan);
+    FlatFrame::Step step = frame_.advance(world_T_sensor, scan);
     const detail::Box& box = step.admission.box;
     if (step.shift) {  // rare (every ~2 km): re-express the held points, as ECO does
       for (Batch& b : batches_) {
@@ -45,8 +45,7 @@ class ScanPass final : public Method {
     Batch& fresh = batches_.emplace_back();
     fresh.alive = box;
     fresh.points.reserve(scan.count);
-    UpdateStats ignored;
-    step.admission.for_each(scan, ignored, [&](const std::array<float, 3>& p) { fresh.points.push_back(p); });
+    step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p) { fresh.points.push_back(p); });
     for (const auto& p : fresh.points) fresh.bounds.grow(p[0], p[1], p[2]);
   }
 

@@ -22,6 +22,8 @@ std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Vector3d& lo,
                                        Frame frame);
 /// Unique keys of the occupied voxels of side `resolution`, in no particular order.
 std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution);
+/// Sorts keys[from, end) and drops the repeats there.
+void sort_unique(std::vector<VoxelKey>& keys, std::size_t from = 0);
 /// Calls visit(world point) once per held point.
 void for_each_held(const Tree& t, const std::function<void(const Eigen::Vector3d&)>& visit);
 /// Points, nodes, leaf depths and bytes: a walk over the nodes.

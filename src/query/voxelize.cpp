@@ -130,8 +130,7 @@ class LatticeVoxels {
       const VoxelKey key{grid_.index(0, s.p[0]), grid_.index(1, s.p[1]), grid_.index(2, s.p[2])};
       if (out_.size() == base || out_.back() != key) out_.push_back(key);
     });
-    std::sort(out_.begin() + std::ptrdiff_t(base), out_.end());
-    out_.erase(std::unique(out_.begin() + std::ptrdiff_t(base), out_.end()), out_.end());
+    sort_unique(out_, base);
   }
 
   const Tree& t_;
@@ -161,9 +160,14 @@ std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution) {
         const VoxelKey key{grid.index(0, s.p[0]), grid.index(1, s.p[1]), grid.index(2, s.p[2])};
         if (keys.empty() || keys.back() != key) keys.push_back(key);  // neighbours often repeat
       });
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  sort_unique(keys);
   return keys;
+}
+
+void sort_unique(std::vector<VoxelKey>& keys, std::size_t from) {
+  const auto first = keys.begin() + std::ptrdiff_t(from);
+  std::sort(first, keys.end());
+  keys.erase(std::unique(first, keys.end()), keys.end());
 }
 
 }  // namespace detail

@@ -53,10 +53,10 @@ void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& s
 /// One update (EgoOctree::update): begin_update(), then the four stages. Returns the frame's
 /// statistics.
 UpdateStats run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
-/// Every update's preamble (ECO's and the baselines'): checks the arguments against the tree's
+/// Every update's preamble (ECO's and the baselines'): checks the arguments against the
 /// configuration — throwing std::invalid_argument, the tree unchanged, when they are refused —
 /// and returns the frame's statistics, counting the scan.
-UpdateStats begin_update(const Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
+UpdateStats begin_update(const Config& config, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
 
 /// Throws std::invalid_argument naming `name` and the value unless `pose` is finite and rigid.
 void check_pose(const Eigen::Isometry3d& pose, const char* name);

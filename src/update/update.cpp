@@ -62,15 +62,15 @@ void detail::check_update_arguments(const Eigen::Isometry3d& pose, const char* n
   check_density_grid(pose, config);
 }
 
-UpdateStats detail::begin_update(const Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  check_update_arguments(world_T_sensor, "world_T_sensor", scan, tree.config());
+UpdateStats detail::begin_update(const Config& config, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
+  check_update_arguments(world_T_sensor, "world_T_sensor", scan, config);
   UpdateStats stats;
   stats.scan_points = scan.count;
   return stats;
 }
 
 UpdateStats detail::run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  UpdateStats stats = begin_update(tree, world_T_sensor, scan);
+  UpdateStats stats = begin_update(tree.config(), world_T_sensor, scan);
   auto [motion, displaced] = advance_ego_motion(tree, world_T_sensor, stats);      // 1. pose, box: O(1)
   prune_shift_out(tree, motion, stats);                                            // 2. R_out
   displaced = refine_overlap(tree, motion, std::move(displaced), stats);           // 3. R_over
