@@ -1,0 +1,131 @@
+// The tree's structural operations on their own (src/core/tree.hpp), beyond what the update's
+// oracle tests reach through the stages: taking every point out, detaching and re-attaching the
+// depth-k subtrees (Quantised re-linking), and growing the root (i-Octree). After each, the held
+// points are exactly those inserted and check_tree() finds every invariant intact.
+
+#include "core/invariants.hpp"
+#include "core/tree.hpp"
+#include "update/stages.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+namespace eco::detail {
+namespace {
+
+using Points = std::vector<std::array<float, 3>>;
+
+/// A tree on `config` placed at `position`, holding `n` random points of its box.
+class TreeOpsTest : public ::testing::Test {
+ protected:
+  void fill(const Config& config, std::size_t n) {
+    tree_ = std::make_unique<Tree>(config);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = Eigen::Vector3d(3.2, -4.1, 0.7);
+    const Motion motion = next_motion(pose, std::nullopt, config.box_side);
+    tree_->set_motion(motion);
+    UpdateStats stats;
+    EXPECT_TRUE(refine_overlap(*tree_, motion, {}, stats).empty());  // places the first root
+    place_start_table(*tree_, motion);
+    std::mt19937 rng(11);
+    std::vector<StoredPoint> batch;
+    for (std::size_t i = 0; i < n; ++i) {
+      StoredPoint s{};
+      for (int a = 0; a < 3; ++a) {
+        // clustered like surfaces, so that subtrees of every size appear
+        std::uniform_real_distribution<double> u(motion.box.lo[a], motion.box.hi[a]);
+        const double v = i % 3 == 0 ? u(rng) : std::fmod(std::abs(u(rng)), 2.0) + motion.box.lo[a];
+        s.p[std::size_t(a)] = float(v);
+      }
+      if (!motion.box.contains(s.p[0], s.p[1], s.p[2])) continue;
+      inserted_.push_back(s.p);
+      batch.push_back(s);
+    }
+    tree_->insert_batch(batch);
+    std::sort(inserted_.begin(), inserted_.end());
+    ASSERT_EQ(tree_->size(), inserted_.size());
+    ASSERT_EQ(check_tree(*tree_), "");
+  }
+
+  [[nodiscard]] Points held() const {
+    Points out;
+    if (tree_->root() != kNone) tree_->walk_points(tree_->root(), [&](const StoredPoint& s) { out.push_back(s.p); });
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  std::unique_ptr<Tree> tree_;
+  Points inserted_;
+};
+
+TEST_F(TreeOpsTest, TakePointsHandsBackEveryPointAndLeavesNoRoot) {
+  fill(Config{}, 5000);
+  std::vector<StoredPoint> out;
+  tree_->take_points(out);
+  EXPECT_EQ(tree_->root(), kNone);
+  EXPECT_EQ(tree_->size(), 0u);
+  EXPECT_EQ(tree_->nodes().live(), 0u);
+  Points taken;
+  for (const StoredPoint& s : out) taken.push_back(s.p);
+  std::sort(taken.begin(), taken.end());
+  EXPECT_EQ(taken, inserted_);
+}
+
+TEST_F(TreeOpsTest, DetachedSubtreesReattachUnderAFreshTopWithEveryPoint) {
+  const Config config;  // Quantised, k = 3
+  fill(config, 20000);
+  const int k = int(config.quantum_levels);
+  const std::size_t live = tree_->nodes().live();
+  const Cell root_cell = tree_->root_cell();
+  const auto subtrees = tree_->detach_subtrees(k);
+  EXPECT_EQ(tree_->root(), kNone);
+  ASSERT_FALSE(subtrees.empty());
+  for (const auto& [id, cell] : subtrees) EXPECT_EQ(cell.depth, k);
+  tree_->place_root(root_cell, tree_->lattice());
+  for (const auto& [id, cell] : subtrees) tree_->attach_subtree(id, cell);
+  tree_->refit_above(k);
+  EXPECT_EQ(check_tree(*tree_), "");
+  EXPECT_EQ(held(), inserted_);
+  EXPECT_EQ(tree_->nodes().live(), live);  // the same top levels, made afresh
+}
+
+TEST_F(TreeOpsTest, GrowingTheRootKeepsEveryPointAndDeepensTheLattice) {
+  Config config;
+  config.recentring = Recentring::Exact;
+  fill(config, 3000);
+  for (const int octant : {0, 7, 2, 5}) {
+    const Cell before = tree_->root_cell();
+    const std::int64_t side = tree_->lattice().side(0);
+    const int depth = tree_->lattice().max_depth;
+    tree_->grow_root(octant);
+    EXPECT_EQ(tree_->lattice().max_depth, depth + 1);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(tree_->root_cell().lo[a], before.lo[a] - (octant >> a & 1 ? side : 0)) << "axis " << a;
+    }
+    EXPECT_EQ(tree_->nodes().child(tree_->root(), octant) != kNone, true);
+    EXPECT_EQ(check_tree(*tree_), "") << "after growing toward octant " << octant;
+    EXPECT_EQ(held(), inserted_);
+  }
+}
+
+TEST_F(TreeOpsTest, DropAndFilterCountWhatLeaves) {
+  fill(Config{}, 5000);
+  UpdateStats stats;
+  Motion motion = *tree_->motion();
+  Box& half = motion.box;
+  half.hi[0] = (half.lo[0] + half.hi[0]) / 2;  // keep the lower half in x
+  prune_shift_out(*tree_, motion, stats);
+  Points want;
+  std::copy_if(inserted_.begin(), inserted_.end(), std::back_inserter(want),
+               [&](const std::array<float, 3>& p) { return half.contains(p[0], p[1], p[2]); });
+  EXPECT_EQ(held(), want);
+  EXPECT_EQ(stats.pruned, inserted_.size() - want.size());
+  EXPECT_EQ(stats.aged_out, 0u);
+  EXPECT_EQ(check_tree(*tree_), "");
+}
+
+}  // namespace
+}  // namespace eco::detail
