@@ -37,7 +37,7 @@ class FlatFrame {
   Step advance(const Eigen::Isometry3d& world_T_sensor, const ScanView& scan) {
     UpdateStats stats = detail::begin_update(cfg_, world_T_sensor, scan);
     motion_ = detail::next_motion(world_T_sensor, motion_, cfg_.box_side);
-    density_grid_ = detail::WorldGrid({anchor()[0], anchor()[1], anchor()[2]}, cfg_.density_cap.cell_size);
+    density_grid_ = voxel_grid(cfg_.density_cap.cell_size);
     if (motion_->origin_shift) density_.clear();  // the caller counts the re-expressed points anew
     return {stats, motion_->origin_shift, detail::admission(*motion_, cfg_.insert_policy)};
   }
@@ -84,9 +84,9 @@ class FlatFrame {
     }
     return "";
   }
-  [[nodiscard]] VoxelKey voxel(const std::array<float, 3>& p, double res) const {
-    const auto [x, y, z] = detail::WorldGrid({anchor()[0], anchor()[1], anchor()[2]}, res).index(p);
-    return {x, y, z};
+  /// Voxels of side `res` as seen from the stored coordinates (build once per map, not per point).
+  [[nodiscard]] detail::WorldGrid voxel_grid(double res) const {
+    return detail::WorldGrid({anchor()[0], anchor()[1], anchor()[2]}, res);
   }
 
   /// Throws std::invalid_argument naming `resolution` unless voxels of that side can be indexed.
@@ -122,17 +122,20 @@ class FlatFrame {
 /// Nearest first, as every query reports neighbours.
 inline bool nearer(const Neighbor& a, const Neighbor& b) { return a.sq_dist < b.sq_dist; }
 
+/// The voxel of stored point p in `grid`.
+inline VoxelKey voxel_key(const detail::WorldGrid& grid, const std::array<float, 3>& p) {
+  const auto [x, y, z] = grid.index(p);
+  return {x, y, z};
+}
+
 /// Sorted unique voxel keys of points `held` (anchor frame) at `res`: the brute-force voxel map.
 template <class Points>
 std::vector<VoxelKey> voxel_keys_of_points(const FlatFrame& frame, const Points& held, double res) {
   frame.require_voxel_resolution(res);
-  const detail::WorldGrid grid({frame.anchor()[0], frame.anchor()[1], frame.anchor()[2]}, res);
+  const detail::WorldGrid grid = frame.voxel_grid(res);
   std::vector<VoxelKey> keys;
   keys.reserve(held.size());
-  for (const auto& p : held) {
-    const auto [x, y, z] = grid.index({p[0], p[1], p[2]});
-    keys.push_back({x, y, z});
-  }
+  for (const auto& p : held) keys.push_back(voxel_key(grid, {p[0], p[1], p[2]}));
   detail::sort_unique(keys);
   return keys;
 }

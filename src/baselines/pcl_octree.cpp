@@ -113,7 +113,8 @@ class PclOctree final : public Method {
     if (held_count_ > 0) octree_->getOccupiedVoxelCenters(centres);
     std::vector<VoxelKey> keys;
     keys.reserve(centres.size());
-    for (const pcl::PointXYZ& c : centres) keys.push_back(frame_.voxel({c.x, c.y, c.z}, res));
+    const detail::WorldGrid grid = frame_.voxel_grid(res);
+    for (const pcl::PointXYZ& c : centres) keys.push_back(voxel_key(grid, {c.x, c.y, c.z}));
     return keys;
   }
   [[nodiscard]] std::vector<Eigen::Vector3d> points() const override {
