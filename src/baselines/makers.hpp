@@ -7,6 +7,7 @@ namespace eco::baselines {
 
 std::unique_ptr<Method> make_eco(const Config& config, Recentring recentring);
 std::unique_ptr<Method> make_octree_base(const Config& config);
+std::unique_ptr<Method> make_scan_only(const Config& config);
 std::unique_ptr<Method> make_ioctree_global(const Config& config);
 std::unique_ptr<Method> make_ioctree_target(const Config& config);
 std::unique_ptr<Method> make_nanoflann(const Config& config);

@@ -15,7 +15,7 @@ std::vector<Neighbor> Method::knn(const Eigen::Vector3d& query, std::size_t k) c
 
 const std::vector<std::string>& method_names() {
   static const std::vector<std::string> names{"eco",       "eco_exact",  "octree_base", "ioctree_global",
-                                              "ioctree_target", "nanoflann", "pcl_octree", "scan_pass"};
+                                              "ioctree_target", "nanoflann", "pcl_octree", "scan_pass", "scan_only"};
   return names;
 }
 
@@ -28,6 +28,7 @@ std::unique_ptr<Method> make_method(std::string_view name, const Config& config)
   if (name == "nanoflann") return make_nanoflann(config);
   if (name == "pcl_octree") return make_pcl_octree(config);
   if (name == "scan_pass") return make_scan_pass(config);
+  if (name == "scan_only") return make_scan_only(config);
   std::string known;
   for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown method '" + std::string(name) + "' (known: " + known + ")");

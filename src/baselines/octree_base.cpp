@@ -3,6 +3,11 @@
 // points the insert policy admits. The root is the box itself, as in the paper. The rebuild is
 // in bulk: the kept points, then the admitted scan points, are partitioned top-down by octant
 // (Tree::insert_batch), each node visited once per batch rather than once per point.
+//
+// `scan_only` is the paper's dynamic Octree_base: rebuilt from the current scan's in-box points
+// alone, it forgets every earlier frame. It is the reference the dynamic workload's voxel maps are
+// compared with (Chamfer): how far a map's memory of past frames (moving objects' trails) takes
+// it from what the sensor sees now.
 
 #include "baselines/makers.hpp"
 #include "baselines/tree_method.hpp"
@@ -16,9 +21,22 @@ Config rebuilt_from_the_box(Config config) {
   return config;
 }
 
+Config rebuilt_from_the_scan(Config config) {
+  config = rebuilt_from_the_box(config);
+  config.insert_policy = InsertPolicy::AllInBox;  // every scan point in the box, whatever came before
+  config.max_age_frames = 0;
+  return config;
+}
+
+/// What a rebuild keeps of the last frame's points.
+enum class Memory { PointsStillInTheBox, Nothing };
+
 class OctreeBase final : public TreeMethod {
  public:
-  explicit OctreeBase(const Config& config) : TreeMethod("octree_base", rebuilt_from_the_box(config)) {}
+  OctreeBase(const Config& config, Memory memory)
+      : TreeMethod(memory == Memory::Nothing ? "scan_only" : "octree_base",
+                   memory == Memory::Nothing ? rebuilt_from_the_scan(config) : rebuilt_from_the_box(config)),
+        memory_(memory) {}
 
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
     detail::Tree& t = tree_;
@@ -26,17 +44,28 @@ class OctreeBase final : public TreeMethod {
     auto [motion, held] = detail::advance_ego_motion(t, world_T_sensor, stats);  // a moved origin hands back all
     detail::prune_shift_out(t, motion, stats);  // what left the box or aged out
     t.take_points(held);                        // the rest, to be rebuilt from scratch
+    if (memory_ == Memory::Nothing) {
+      held.clear();
+      t.recount_density(held);  // no cell holds a point any more
+    }
     held = detail::refine_overlap(t, motion, std::move(held), stats);  // a new, empty root on the box
     t.rebuild_start_table(0);  // the paper's: every point from the root
     detail::reinsert(t, held, stats);
     detail::insert_scan(t, motion, scan, stats);
   }
+
+ private:
+  Memory memory_;
 };
 
 }  // namespace
 
 std::unique_ptr<Method> make_octree_base(const Config& config) {
-  return std::make_unique<OctreeBase>(config);
+  return std::make_unique<OctreeBase>(config, Memory::PointsStillInTheBox);
+}
+
+std::unique_ptr<Method> make_scan_only(const Config& config) {
+  return std::make_unique<OctreeBase>(config, Memory::Nothing);
 }
 
 }  // namespace eco::baselines

@@ -75,6 +75,7 @@ json run_json(const BenchRun& run, const std::string& command_line) {
            {{"source", run.source},
             {"frames_run", run.methods.empty() ? 0 : run.methods.front().frames.size()},
             {"map_points", run.map_points},
+            {"chamfer_reference", run.chamfer_reference},
             {"seconds", run.seconds},
             {"note", "eco_exact always runs with recentring = Exact; octree_base and the i-Octree baselines "
                      "place their roots themselves"}}}};
@@ -182,8 +183,13 @@ void write_results(const std::filesystem::path& folder, const BenchRun& run, con
      << ", voxel map at " << run.options.voxel_resolution << " m\n- machine: " << describe_machine()
      << "\n- version " << kVersion << ", command: `" << command_line << "`\n\n"
      << summary_tables(run, summaries)
-     << "\nChamfer: each method's voxel map (clipped to the ego box) against octree_base's, mean of the two "
-        "directed mean nearest-voxel distances. Depth and nodes: – for the k-d tree.\n";
+     << "\nChamfer: each method's voxel map (clipped to the ego box) against " << run.chamfer_reference
+     << "'s, mean of the two directed mean nearest-voxel distances"
+     << (run.chamfer_reference == "scan_only"
+             ? " (the paper's dynamic comparison: scan_only holds the current scan's in-box points alone, so the "
+               "distance measures what a map remembers of earlier frames, moving objects' trails among it)"
+             : "")
+     << ". Depth and nodes: – for the k-d tree.\n";
   write_file(folder / "summary.md", md.str());
   write_update_plot(folder / "update_ms.svg", run);
 }

@@ -23,13 +23,23 @@ double ms_since(Clock::time_point start) {
 
 }  // namespace
 
+std::string chamfer_reference(WorkloadKind workload) {
+  return workload == WorkloadKind::Dynamic ? "scan_only" : "octree_base";
+}
+
 BenchRun run_bench(const BenchOptions& given, const Progress& progress) {
   const auto started = Clock::now();
   BenchOptions options = given;
   options.config.validate();
+  const std::string reference = chamfer_reference(options.workload);
+  if (options.workload == WorkloadKind::Dynamic &&
+      std::find(options.methods.begin(), options.methods.end(), reference) == options.methods.end()) {
+    options.methods.push_back(reference);  // the paper's dynamic reference: the scan alone
+  }
   std::vector<std::unique_ptr<baselines::Method>> methods;
   BenchRun run;
   run.options = options;
+  run.chamfer_reference = reference;
   for (const std::string& name : options.methods) {
     methods.push_back(baselines::make_method(name, options.config));
     run.methods.push_back({name, {}});
@@ -39,9 +49,9 @@ BenchRun run_bench(const BenchOptions& given, const Progress& progress) {
   run.map_points = workload.map_points;
   const std::size_t total =
       options.frames > 0 ? std::min(options.frames, workload.frames->size()) : workload.frames->size();
-  std::ptrdiff_t base = -1;  // index of octree_base, the voxel maps' reference
+  std::ptrdiff_t base = -1;  // index of the voxel maps' reference
   for (std::size_t m = 0; m < methods.size(); ++m) {
-    if (methods[m]->name() == "octree_base") base = std::ptrdiff_t(m);
+    if (methods[m]->name() == reference) base = std::ptrdiff_t(m);
   }
   std::vector<Neighbor> found(options.knn_k);
   std::vector<std::vector<VoxelKey>> maps(methods.size());

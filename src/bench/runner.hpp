@@ -21,7 +21,7 @@ struct FrameRecord {
   double mean_depth = 0.0;       ///< mean leaf depth (0: no octree)
   int max_depth = 0;
   std::size_t bytes = 0;
-  double chamfer_m = 0.0;        ///< voxel map vs octree_base's, clipped to the box; NaN without it
+  double chamfer_m = 0.0;        ///< voxel map vs the reference's (BenchRun), clipped to the box; NaN without it
 };
 
 struct MethodRun {
@@ -34,6 +34,10 @@ struct BenchRun {
   std::string source;           ///< where the frames came from
   std::size_t map_points = 0;   ///< static workload: points in the aggregated map
   std::vector<MethodRun> methods;
+  /// The method whose voxel map the others are compared with (Chamfer), as the paper does:
+  /// `octree_base` (the same points, rebuilt) on the static workload, `scan_only` (the current
+  /// scan alone) on the dynamic one, added to the methods if they were not given it.
+  std::string chamfer_reference;
   double seconds = 0.0;         ///< wall time of the run, loading included
 };
 
@@ -43,6 +47,9 @@ struct Progress {
   std::function<void(std::size_t, std::size_t, const BenchRun&)> frame = [](std::size_t, std::size_t,
                                                                              const BenchRun&) {};
 };
+
+/// The method the voxel maps of a `workload` run are compared with (BenchRun::chamfer_reference).
+[[nodiscard]] std::string chamfer_reference(WorkloadKind workload);
 
 /// Throws std::invalid_argument for an unknown method or a bad configuration, eco::io::Error for
 /// an unreadable data folder, std::runtime_error if a method breaks its invariants (with

@@ -1,7 +1,7 @@
 // A wrong baseline is a wrong table: every benchmark method passes the oracle tests ECO passes —
 // randomized streams, every motion pattern and insert policy, held set and every query equal to
 // the brute force after every frame. `ioctree_global` keeps what left the box, so its oracle
-// does not prune.
+// does not prune; `scan_only` keeps only the current scan's points in the box.
 
 #include "support/compare.hpp"
 #include "support/streams.hpp"
@@ -17,11 +17,14 @@ using baselines::make_method;
 using baselines::Method;
 
 /// Streams `frames` frames through method `name` and the oracle; every answer must agree after
-/// every frame. `ioctree_global` keeps what left the box, so its oracle does not prune.
+/// every frame.
 void stream_and_compare(const std::string& name, const Config& cfg, Stream stream, int frames) {
   const std::unique_ptr<Method> method = make_method(name, cfg);
   ASSERT_EQ(method->name(), name);
-  Oracle oracle(cfg, /*prunes=*/name != "ioctree_global");
+  const Memory memory = name == "ioctree_global" ? Memory::Everything
+                        : name == "scan_only"    ? Memory::Nothing
+                                                 : Memory::TheBox;
+  Oracle oracle(cfg, memory);
   std::mt19937 rng(17);
   for (int t = 0; t < frames; ++t) {
     const Eigen::Isometry3d pose = stream.pose(t);
@@ -75,7 +78,8 @@ TEST_P(BaselineCapped, DensityCapAndAgeLimitAsTheContractSays) {
   Config cfg;
   cfg.insert_policy = policy;
   cfg.density_cap = {0.5, 2};
-  cfg.max_age_frames = name == "ioctree_global" ? 0 : 4;  // a global map never deletes
+  // a global map never deletes; a map of the current scan has nothing to age
+  cfg.max_age_frames = name == "ioctree_global" || name == "scan_only" ? 0 : 4;
   stream_and_compare(name, cfg, Stream(motion, Cloud::Duplicates, cfg.box_side, 99u), 16);
 }
 
@@ -86,7 +90,8 @@ std::string capped_name(const ::testing::TestParamInfo<CappedParams>& info) {
 
 INSTANTIATE_TEST_SUITE_P(
     OctreeMethods, BaselineCapped,
-    ::testing::Combine(::testing::Values("eco", "eco_exact", "octree_base", "ioctree_global", "ioctree_target"),
+    ::testing::Combine(::testing::Values("eco", "eco_exact", "octree_base", "ioctree_global", "ioctree_target",
+                                           "scan_only"),
                        ::testing::Values(InsertPolicy::ShiftInOnly, InsertPolicy::AllInBox),
                        ::testing::Values(Motion::Smooth, Motion::Still, Motion::Teleport)),
     capped_name);

@@ -18,10 +18,16 @@
 
 namespace eco::test {
 
+/// What the map keeps of earlier frames.
+enum class Memory {
+  TheBox,      ///< the contract: what is still in the box (and within the age limit)
+  Everything,  ///< a global map (ioctree_global): nothing is ever dropped
+  Nothing,     ///< a map rebuilt from the current scan alone (scan_only)
+};
+
 class Oracle {
  public:
-  /// `prunes`: drop what leaves the box (the contract); false for a global map that keeps all.
-  explicit Oracle(const Config& config, bool prunes = true) : cfg_(config), prunes_(prunes) {}
+  explicit Oracle(const Config& config, Memory memory = Memory::TheBox) : cfg_(config), memory_(memory) {}
 
   /// Mirrors one update. `origin` is the precision origin the tree reports after the update.
   void update(const Eigen::Isometry3d& pose, const std::vector<Eigen::Vector3f>& scan,
@@ -39,8 +45,10 @@ class Oracle {
     position_ = pose.translation();
     const std::uint32_t age = cfg_.max_age_frames;
     const std::uint32_t cutoff = age > 0 && frame_ > age ? frame_ - age : 0;
-    if (prunes_) {
+    if (memory_ == Memory::TheBox) {
       std::erase_if(held_, [&](const Held& h) { return !in_box(position_, h.p) || h.stamp < cutoff; });
+    } else if (memory_ == Memory::Nothing) {
+      held_.clear();
     }
 
     const Eigen::Matrix3d r = pose.linear();
@@ -51,7 +59,10 @@ class Oracle {
       const std::array<float, 3> f{float(w[0] - origin_[0]), float(w[1] - origin_[1]),
                                    float(w[2] - origin_[2])};
       if (!in_box(position_, f)) continue;
-      if (cfg_.insert_policy == InsertPolicy::ShiftInOnly && had_box && in_box(previous, f)) continue;
+      if (cfg_.insert_policy == InsertPolicy::ShiftInOnly && memory_ != Memory::Nothing && had_box &&
+          in_box(previous, f)) {
+        continue;
+      }
       if (cfg_.density_cap.enabled() && density_count(f) >= cfg_.density_cap.max_points) continue;
       held_.push_back({f, age > 0 ? frame_ : 0});
     }
@@ -173,7 +184,7 @@ class Oracle {
   }
 
   Config cfg_;
-  bool prunes_ = true;
+  Memory memory_ = Memory::TheBox;
   std::vector<Held> held_;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
