@@ -15,6 +15,7 @@ namespace {
 }
 
 constexpr int kDeepestLevel = 24;  // cells 2^-24 of the root: far below any LiDAR's noise
+constexpr double kMaxPixels = 1 << 24;  // a range image of 64 MB of floats at most
 
 }  // namespace
 
@@ -36,6 +37,12 @@ double Config::root_side() const {
   return quantum() * double(1u << quantum_levels);
 }
 
+int SensorModel::rows() const {
+  return int(std::ceil((vertical_fov_max - vertical_fov_min) / vertical_resolution));
+}
+
+int SensorModel::columns() const { return int(std::ceil(360.0 / horizontal_resolution)); }
+
 int Config::max_depth() const {
   return int(std::floor(std::log2(root_side() / min_cell_size)));
 }
@@ -56,6 +63,17 @@ void Config::validate() const {
            "is too small for box_side: more than 24 levels below the root");
   }
   if (voxel_size > box_side) reject("voxel_size", voxel_size, "must be at most box_side");
+  if (!(sensor.vertical_fov_max > sensor.vertical_fov_min)) {
+    reject("sensor.vertical_fov_max", sensor.vertical_fov_max,
+           "must be above sensor.vertical_fov_min = " + std::to_string(sensor.vertical_fov_min) + " deg");
+  }
+  // ceil() of the quotients below stays far from int's limits once the pixel count is bounded
+  if ((sensor.vertical_fov_max - sensor.vertical_fov_min) / sensor.vertical_resolution *
+          (360.0 / sensor.horizontal_resolution) > kMaxPixels) {
+    reject("sensor.horizontal_resolution", sensor.horizontal_resolution,
+           "with sensor.vertical_resolution = " + std::to_string(sensor.vertical_resolution) +
+               " deg gives a range image of more than 2^24 pixels");
+  }
   if (density_cap.enabled()) {
     const double cell = density_cap.cell_size;
     if (cell <= 0.0) reject("density_cap.cell_size", cell, "must be > 0 m while density_cap.max_points > 0");

@@ -16,13 +16,14 @@ constexpr double kMaxCount = 4294967295.0;  // std::uint32_t
 
 constexpr std::array<std::string_view, 2> kRecentring{"Quantised", "Exact"};
 constexpr std::array<std::string_view, 2> kInsertPolicy{"ShiftInOnly", "AllInBox"};
+constexpr std::array<std::string_view, 2> kSwitch{"false", "true"};  // a Switch's values 0 and 1
 
 // One accessor pair per field: the value as a double (a count or an enum's index are exact).
 #define ECO_FIELD_ACCESS(member, type)                                  \
   [](const Config& c) { return double(c.member); },                      \
   [](Config& c, double v) { c.member = type(v); }
 
-const std::array<ConfigField, 10> kFields{{
+const std::array<ConfigField, 17> kFields{{
     {"box_side", ConfigField::Kind::Real, "m", "L: side of the ego cube held around the sensor; typical 10-100",
      0.0, 1e5, true, {}, ECO_FIELD_ACCESS(box_side, double)},
     {"leaf_capacity", ConfigField::Kind::Count, "points", "N_max: a leaf with more points splits; typical 8-64",
@@ -49,6 +50,26 @@ const std::array<ConfigField, 10> kFields{{
      ECO_FIELD_ACCESS(density_cap.max_points, std::uint32_t)},
     {"max_age_frames", ConfigField::Kind::Count, "frames", "drop points inserted more than this many frames ago; 0 = off",
      0.0, kMaxCount, false, {}, ECO_FIELD_ACCESS(max_age_frames, std::uint32_t)},
+    {"clearing.enabled", ConfigField::Kind::Switch, "",
+     "free-space clearing: remove held points the new scan sees through (a return farther along the same "
+     "ray); off by default",
+     0.0, 1.0, false, kSwitch, ECO_FIELD_ACCESS(clearing.enabled, bool)},
+    {"clearing.margin", ConfigField::Kind::Real, "m",
+     "clearing: the nearest return around a held point must lie this much farther than it", 0.01, 1e5, false, {},
+     ECO_FIELD_ACCESS(clearing.margin, double)},
+    {"sensor.vertical_fov_min", ConfigField::Kind::Real, "deg", "elevation of the sensor's lowest beam", -90.0,
+     90.0, false, {}, ECO_FIELD_ACCESS(sensor.vertical_fov_min, double)},
+    {"sensor.vertical_fov_max", ConfigField::Kind::Real, "deg",
+     "elevation just above the sensor's highest beam; above vertical_fov_min", -90.0, 90.0, false, {},
+     ECO_FIELD_ACCESS(sensor.vertical_fov_max, double)},
+    {"sensor.vertical_resolution", ConfigField::Kind::Real, "deg",
+     "range image row height: about the beam spacing (the largest, if uneven)", 0.0, 180.0, true, {},
+     ECO_FIELD_ACCESS(sensor.vertical_resolution, double)},
+    {"sensor.horizontal_resolution", ConfigField::Kind::Real, "deg",
+     "range image column width: two to three firing steps", 0.0, 360.0, true, {},
+     ECO_FIELD_ACCESS(sensor.horizontal_resolution, double)},
+    {"sensor.max_range", ConfigField::Kind::Real, "m", "returns and held points farther away are not used", 0.0,
+     1e6, true, {}, ECO_FIELD_ACCESS(sensor.max_range, double)},
     {"voxel_size", ConfigField::Kind::Real, "m",
      "Quantised only: the voxel size voxel maps are asked at (cells become voxels of voxel_size * 2^i); "
      "0 = the paper's quantum; at most box_side",
@@ -83,7 +104,8 @@ bool same_ignoring_case(std::string_view a, std::string_view b) {
 
 std::string ConfigField::range() const {
   switch (kind) {
-    case Kind::Choice: {
+    case Kind::Choice:
+    case Kind::Switch: {
       std::string out;
       for (const std::string_view c : choices) out += (out.empty() ? "" : " | ") + std::string(c);
       return out;
@@ -111,7 +133,7 @@ std::string ConfigField::summary(const Config& defaults) const {
 
 std::string ConfigField::format(const Config& config) const {
   const double v = get(config);
-  if (kind == Kind::Choice) {
+  if (kind == Kind::Choice || kind == Kind::Switch) {
     const auto i = std::size_t(v);
     return v >= 0.0 && i < choices.size() ? std::string(choices[i]) : number_text(v);
   }
@@ -119,7 +141,7 @@ std::string ConfigField::format(const Config& config) const {
 }
 
 void ConfigField::check(double v) const {
-  if (kind == Kind::Choice) {
+  if (kind == Kind::Choice || kind == Kind::Switch) {
     if (!(v >= 0.0 && v < double(choices.size()) && v == std::floor(v))) {
       reject(name, number_text(v), "is not one of " + range());
     }
@@ -138,7 +160,7 @@ void ConfigField::parse(Config& config, std::string_view text) const {
   std::ostringstream quoted;
   quoted << '"' << text << '"';
   const std::string shown = quoted.str();
-  if (kind == Kind::Choice) {
+  if (kind == Kind::Choice || kind == Kind::Switch) {
     for (std::size_t i = 0; i < choices.size(); ++i) {
       if (same_ignoring_case(text, choices[i])) {
         set(config, double(i));

@@ -39,6 +39,44 @@ struct DensityCap {
   [[nodiscard]] bool enabled() const { return max_points > 0; }
 };
 
+/// The LiDAR as free-space clearing sees it: a spinning sensor at the origin of the sensor frame
+/// (the frame of the scan and of the pose's rotation) whose returns are binned into a range image.
+/// For a sensor-frame point v, in degrees:
+///   azimuth   = atan2(v.y, v.x) * 180 / pi,   column = floor((azimuth + 180) / horizontal_resolution)
+///                                                      mod columns, columns = ceil(360 / horizontal_resolution);
+///   elevation = atan2(v.z, hypot(v.x, v.y)) * 180 / pi,
+///                                            row = floor((elevation - vertical_fov_min) / vertical_resolution),
+///   a point with elevation outside [vertical_fov_min, vertical_fov_max) or range |v| above
+///   max_range is outside the image. Defaults: Velodyne HDL-64E as on KITTI (64 beams from -24.9 to
+///   +2 degrees, ~0.42 degrees apart; ~0.08 degrees between firings, binned at 0.2). For another
+///   sensor take its vertical field of view, its beam spacing (field of view / beams; the largest
+///   spacing if uneven) as vertical_resolution, and two to three times its firing step as
+///   horizontal_resolution, so that every pixel on a surface holds a return.
+struct SensorModel {
+  double vertical_fov_min = -24.9;      ///< [deg] elevation of the lowest beam; in [-90, 90).
+  double vertical_fov_max = 2.0;        ///< [deg] just above the highest beam; in (vertical_fov_min, 90].
+  double vertical_resolution = 0.42;    ///< [deg] row height, about the beam spacing; > 0.
+  double horizontal_resolution = 0.2;   ///< [deg] column width; in (0, 360].
+  double max_range = 100.0;             ///< [m] returns and held points farther away are not used; > 0.
+
+  [[nodiscard]] int rows() const;     ///< rows of the range image: ceil(fov span / vertical_resolution)
+  [[nodiscard]] int columns() const;  ///< columns: ceil(360 / horizontal_resolution)
+};
+
+/// Free-space clearing: each update removes the held points that the new scan shows to be empty
+/// space, so moving objects leave no trails. A held point is cleared when it lies in the sensor's
+/// image (SensorModel) and the nearest return among its pixel and the 8 around it (columns wrap
+/// around, rows stop at the image's edge) is farther than the point by more than `margin`: some
+/// ray passed through it, and none of its neighbours stopped before it. Points behind surfaces,
+/// outside the field of view, beyond max_range, or where no return came back are kept. The test
+/// uses the update's pose and every finite return of the scan (in the box or not) and runs after
+/// the box moved (stage 2), before the scan's points are inserted.
+/// The sensor is Config::sensor.
+struct FreeSpaceClearing {
+  bool enabled = false;   ///< off by default: the paper's behaviour, every trail kept
+  double margin = 0.3;    ///< [m] a return must lie this much beyond a point to clear it; >= 0.01.
+};
+
 /// Configuration of an EgoOctree.
 struct Config {
   double box_side = 20.0;  ///< L [m]: side of the ego cube held around the sensor; typical 10–100.
@@ -51,6 +89,8 @@ struct Config {
   InsertPolicy insert_policy = InsertPolicy::AllInBox;
   DensityCap density_cap{};  ///< optional, off by default.
   std::uint32_t max_age_frames = 0;  ///< drop points inserted more than this many frames ago; 0 = off.
+  FreeSpaceClearing clearing{};  ///< optional, off by default.
+  SensorModel sensor{};  ///< the LiDAR's geometry (free-space clearing); an HDL-64E by default.
   /// [m] Quantised only: the voxel size you will ask voxel maps at. The quantum is rounded up to
   /// voxel_size * 2^j, so cells of depth >= k are world voxels of side voxel_size * 2^i and
   /// voxel_keys(voxel_size * 2^i) walks nodes instead of points. 0 = the paper's quantum

@@ -13,7 +13,7 @@
 namespace eco {
 
 struct ConfigField {
-  enum class Kind { Real, Count, Choice };
+  enum class Kind { Real, Count, Choice, Switch };  ///< Switch: a bool, spelled false | true
 
   std::string_view name;  ///< as in C++; a nested field is dotted: "density_cap.cell_size"
   Kind kind;
@@ -26,7 +26,7 @@ struct ConfigField {
   double (*get)(const Config&) = nullptr;     ///< the value; a Choice's index
   void (*set)(Config&, double) = nullptr;
 
-  /// The range as text: "(0, 1e+05]", "1..5", "AllInBox | ShiftInOnly".
+  /// The range as text: "(0, 1e+05]", "1..5", "AllInBox | ShiftInOnly", "false | true".
   [[nodiscard]] std::string range() const;
   /// The value of this field in `config` as text: "20", "0.1", "AllInBox".
   [[nodiscard]] std::string format(const Config& config) const;
@@ -35,7 +35,8 @@ struct ConfigField {
   [[nodiscard]] std::string summary(const Config& defaults = {}) const;
   /// The default, as format() writes it.
   [[nodiscard]] std::string default_text() const { return format(Config{}); }
-  /// Sets this field of `config` from text (a number; a Choice's spelling in any case). Throws
+  /// Sets this field of `config` from text (a number; a Choice's spelling or a Switch's false/true
+  /// in any case). Throws
   /// std::invalid_argument naming the field and the text when it is not one, or is out of range;
   /// `config` is unchanged then.
   void parse(Config& config, std::string_view text) const;

@@ -68,6 +68,7 @@ struct UpdateStats {
   std::size_t skipped_by_density = 0; ///< scan points refused by the density cap
   std::size_t pruned = 0;             ///< held points that left the box (R_out)
   std::size_t aged_out = 0;           ///< held points dropped by the age limit
+  std::size_t cleared = 0;            ///< held points the scan saw through (free-space clearing)
   std::size_t relinked_subtrees = 0;  ///< subtrees kept whole and attached to a new parent
   std::size_t rebuilt_subtrees = 0;   ///< subtrees dissolved and their points re-inserted
   std::size_t reinserted_points = 0;  ///< points moved by those rebuilds

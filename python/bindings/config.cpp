@@ -23,7 +23,10 @@ std::string doc_of(std::string_view name) { return config_field(name).summary();
 py::list config_fields_list() {
   py::list out;
   for (const ConfigField& f : config_fields()) {
-    const char* kind = f.kind == ConfigField::Kind::Real ? "real" : f.kind == ConfigField::Kind::Count ? "count" : "choice";
+    const char* kind = f.kind == ConfigField::Kind::Real    ? "real"
+                       : f.kind == ConfigField::Kind::Count  ? "count"
+                       : f.kind == ConfigField::Kind::Switch ? "switch"
+                                                             : "choice";
     py::list choices;
     for (const std::string_view c : f.choices) choices.append(std::string(c));
     out.append(py::dict("name"_a = std::string(f.name), "kind"_a = kind, "unit"_a = std::string(f.unit),
@@ -44,6 +47,23 @@ std::vector<Field<DensityCap>> Record<DensityCap>::fields() {
   };
 }
 
+std::vector<Field<FreeSpaceClearing>> Record<FreeSpaceClearing>::fields() {
+  return {
+      field("enabled", &FreeSpaceClearing::enabled, doc_of("clearing.enabled")),
+      field("margin", &FreeSpaceClearing::margin, doc_of("clearing.margin")),
+  };
+}
+
+std::vector<Field<SensorModel>> Record<SensorModel>::fields() {
+  return {
+      field("vertical_fov_min", &SensorModel::vertical_fov_min, doc_of("sensor.vertical_fov_min")),
+      field("vertical_fov_max", &SensorModel::vertical_fov_max, doc_of("sensor.vertical_fov_max")),
+      field("vertical_resolution", &SensorModel::vertical_resolution, doc_of("sensor.vertical_resolution")),
+      field("horizontal_resolution", &SensorModel::horizontal_resolution, doc_of("sensor.horizontal_resolution")),
+      field("max_range", &SensorModel::max_range, doc_of("sensor.max_range")),
+  };
+}
+
 std::vector<Field<Config>> Record<Config>::fields() {
   return {
       field("box_side", &Config::box_side, doc_of("box_side")),
@@ -55,6 +75,11 @@ std::vector<Field<Config>> Record<Config>::fields() {
       field("density_cap", &Config::density_cap, "DensityCap: at most max_points points per world-aligned cell of side "
                                                   "cell_size; off by default."),
       field("max_age_frames", &Config::max_age_frames, doc_of("max_age_frames")),
+      field("clearing", &Config::clearing,
+            "FreeSpaceClearing: remove held points the new scan sees through (off by default); see sensor."),
+      field("sensor", &Config::sensor,
+            "SensorModel: the LiDAR's field of view and range image, as free-space clearing sees it (an "
+            "HDL-64E by default)."),
       field("voxel_size", &Config::voxel_size, doc_of("voxel_size")),
   };
 }
@@ -62,10 +87,18 @@ std::vector<Field<Config>> Record<Config>::fields() {
 void bind_config(py::module_& m) {
   {  // the records and the table must list the same fields, in the same order
     std::vector<std::string> listed;
+    auto list_parts = [&]<class Part>(const std::string& prefix, const Part*) {
+      for (const Field<Part>& g : Record<Part>::fields()) listed.push_back(prefix + "." + g.name);
+    };
     for (const Field<Config>& f : Record<Config>::fields()) {
-      if (f.name != "density_cap") listed.push_back(f.name);
       if (f.name == "density_cap") {
-        for (const Field<DensityCap>& g : Record<DensityCap>::fields()) listed.push_back("density_cap." + g.name);
+        list_parts(f.name, static_cast<const DensityCap*>(nullptr));
+      } else if (f.name == "clearing") {
+        list_parts(f.name, static_cast<const FreeSpaceClearing*>(nullptr));
+      } else if (f.name == "sensor") {
+        list_parts(f.name, static_cast<const SensorModel*>(nullptr));
+      } else {
+        listed.push_back(f.name);
       }
     }
     std::vector<std::string> table;
@@ -74,7 +107,7 @@ void bind_config(py::module_& m) {
   }
   m.def("config_fields", &config_fields_list,
         "The table of Config's fields (as C++, the eco command and config.json use it): one dict per field "
-        "with name (dotted for density_cap's), kind ('real', 'count' or 'choice'), unit, doc, range, lo, hi, "
+        "with name (dotted for the parts' fields: density_cap., clearing., sensor.), kind ('real', 'count', 'choice' or 'switch': a bool), unit, doc, range, lo, hi, "
         "lo_open, choices and default.");
   py::enum_<Recentring>(m, "Recentring", "How the root cell follows the sensor.")
       .value("Quantised", Recentring::Quantised,
@@ -95,6 +128,14 @@ void bind_config(py::module_& m) {
 
   bind_record<DensityCap>(
       m, "Optional cap on points per world-aligned cell (off while max_points == 0).",
+      Access::ReadWrite);
+  bind_record<FreeSpaceClearing>(
+      m, "Free-space clearing: each update removes the held points the new scan sees through.",
+      Access::ReadWrite);
+  bind_record<SensorModel>(
+      m,
+      "The LiDAR as free-space clearing sees it: a range image of rows of vertical_resolution degrees "
+      "from vertical_fov_min to vertical_fov_max and columns of horizontal_resolution degrees.",
       Access::ReadWrite);
   bind_record<Config>(m,
                       "Configuration of an EgoOctree, field for field with eco::Config in C++.\n\n"

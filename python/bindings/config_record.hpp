@@ -1,5 +1,5 @@
 #pragma once
-// Config and DensityCap as records (records.hpp), for every binding that takes a Config.
+// Config and its parts (DensityCap, FreeSpaceClearing, SensorModel) as records (records.hpp), for every binding that takes a Config.
 
 #include "records.hpp"
 
@@ -11,6 +11,18 @@ template <>
 struct Record<DensityCap> {
   static constexpr const char* name = "DensityCap";
   static std::vector<Field<DensityCap>> fields();  // config.cpp
+};
+
+template <>
+struct Record<FreeSpaceClearing> {
+  static constexpr const char* name = "FreeSpaceClearing";
+  static std::vector<Field<FreeSpaceClearing>> fields();  // config.cpp
+};
+
+template <>
+struct Record<SensorModel> {
+  static constexpr const char* name = "SensorModel";
+  static std::vector<Field<SensorModel>> fields();  // config.cpp
 };
 
 template <>

@@ -39,6 +39,7 @@ struct Record<UpdateStats> {
               "scan points refused by the density cap"),
         field("pruned", &U::pruned, "held points that left the box (R_out)"),
         field("aged_out", &U::aged_out, "held points dropped by the age limit"),
+        field("cleared", &U::cleared, "held points the scan saw through (free-space clearing)"),
         field("relinked_subtrees", &U::relinked_subtrees,
               "subtrees kept whole and attached to a new parent"),
         field("rebuilt_subtrees", &U::rebuilt_subtrees,

@@ -19,6 +19,9 @@ CHANGED = {
     "insert_policy": eco.InsertPolicy.AllInBox,
     "density_cap": eco.DensityCap(cell_size=0.2, max_points=3),
     "max_age_frames": 40,
+    "clearing": eco.FreeSpaceClearing(enabled=True, margin=0.5),
+    "sensor": eco.SensorModel(vertical_fov_min=-15.0, vertical_fov_max=15.0, vertical_resolution=2.0,
+                              horizontal_resolution=0.4, max_range=100.0),
     "voxel_size": 0.25,
 }
 
@@ -33,6 +36,9 @@ def test_defaults_are_the_cpp_defaults():
         "insert_policy": "AllInBox",
         "density_cap": {"cell_size": 0.0, "max_points": 0},
         "max_age_frames": 0,
+        "clearing": {"enabled": False, "margin": 0.3},
+        "sensor": {"vertical_fov_min": -24.9, "vertical_fov_max": 2.0, "vertical_resolution": 0.42,
+                   "horizontal_resolution": 0.2, "max_range": 100.0},
         "voxel_size": 0.1,
     }
 
@@ -156,6 +162,8 @@ def _bad_values(field):
     """Values the field must refuse, from its kind and range alone (as tests/bench/config_surfaces_test.cpp)."""
     if field["kind"] == "choice":
         return ["Sideways", ""]
+    if field["kind"] == "switch":
+        return ["true", 1, None]
     lo, hi = field["lo"], field["hi"]
     if field["kind"] == "count":
         out = [int(lo) - 1, "3"]
@@ -175,15 +183,21 @@ def test_the_table_lists_the_python_fields_with_their_docs():
         flat += [f"{name}.{k}" for k in value] if isinstance(value, dict) else [name]
     assert [f["name"] for f in table] == flat
     for f in table:
-        attribute = getattr(eco.DensityCap, f["name"].split(".")[1]) if "." in f["name"] else getattr(eco.Config, f["name"])
+        if "." in f["name"]:
+            record, field = f["name"].split(".")
+            attribute = getattr(type(getattr(eco.Config(), record)), field)
+        else:
+            attribute = getattr(eco.Config, f["name"])
         assert f["doc"] in attribute.__doc__ and f["range"] in attribute.__doc__, f["name"]
-        assert f["kind"] in ("real", "count", "choice")
+        assert f["kind"] in ("real", "count", "choice", "switch")
 
 
 def test_every_field_takes_its_default_text_and_refuses_what_cpp_refuses():
     for f in eco.config_fields():
         if f["kind"] == "choice":
             default = f["default"]
+        elif f["kind"] == "switch":
+            default = f["default"] == "true"
         elif f["kind"] == "count":
             default = int(f["default"])
         else:
@@ -199,6 +213,10 @@ def test_a_config_json_section_is_a_config():
     """config.json's "config" (what every eco command writes) has Config's shape and spellings."""
     written = {"box_side": 18.0, "leaf_capacity": 32, "min_cell_size": 0.05, "recentring": "Quantised",
                "quantum_levels": 3, "insert_policy": "AllInBox",
-               "density_cap": {"cell_size": 0.2, "max_points": 1}, "max_age_frames": 0, "voxel_size": 0.2}
+               "density_cap": {"cell_size": 0.2, "max_points": 1}, "max_age_frames": 0,
+               "clearing": {"enabled": True, "margin": 0.3},
+               "sensor": {"vertical_fov_min": -24.9, "vertical_fov_max": 2.0, "vertical_resolution": 0.42,
+                          "horizontal_resolution": 0.2, "max_range": 100.0},
+               "voxel_size": 0.2}
     config = eco.Config(**json.loads(json.dumps(written)))
     assert config.to_dict() == written

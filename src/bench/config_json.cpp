@@ -13,6 +13,8 @@ nlohmann::json config_to_json(const Config& config) {
     nlohmann::json value;
     if (f.kind == ConfigField::Kind::Choice) {
       value = f.format(config);
+    } else if (f.kind == ConfigField::Kind::Switch) {
+      value = f.get(config) != 0.0;
     } else if (f.kind == ConfigField::Kind::Count) {
       value = static_cast<std::uint64_t>(f.get(config));
     } else {
@@ -48,6 +50,8 @@ void collect(const nlohmann::json& j, const std::string& prefix, const std::stri
       out.emplace_back(name, value.dump());
     } else if (value.is_string()) {
       out.emplace_back(name, value.get<std::string>());
+    } else if (value.is_boolean()) {  // a switch's; any other field refuses the text
+      out.emplace_back(name, value.get<bool>() ? "true" : "false");
     } else {
       throw io::Error(source, "", "config key " + name + " = " + value.dump() + " must be a number or a name");
     }

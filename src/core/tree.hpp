@@ -121,6 +121,23 @@ class Tree {
   void drop(std::uint32_t id, UpdateStats& stats);
   /// Keeps the points of leaf `id` that keeps() keeps, and refits it.
   void filter_leaf(std::uint32_t id, const Box& box, UpdateStats& stats);
+  /// Keeps the points of leaf `id` for which keep(const StoredPoint&) is true, and refits it; the
+  /// others leave the density counts.
+  template <class Keep>
+  void retain(std::uint32_t id, Keep&& keep) {
+    Node& n = nodes_[id];
+    n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) {
+      if (keep(s)) return true;
+      forget(s);
+      return false;
+    });
+    refit(id);
+  }
+  /// Takes a point that leaves the tree while outside it (handed on between stages) out of the
+  /// density counts.
+  void forget(const StoredPoint& s) {
+    if (cfg_.density_cap.enabled()) density_.remove(density_key(s.p));
+  }
   /// Releases the subtree at `id` (and the node itself; the root leaves the tree without one);
   /// appends its points to `out` if given.
   void dissolve(std::uint32_t id, std::vector<StoredPoint>* out);
@@ -158,10 +175,6 @@ class Tree {
   /// The density-cap cell of stored point p, as CellCounts names it.
   [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
     return CellCounts::key(density_grid_.index(p));
-  }
-  /// Takes a point that leaves the tree out of the density counts.
-  void forget(const StoredPoint& s) {
-    if (cfg_.density_cap.enabled()) density_.remove(density_key(s.p));
   }
   /// Creates the root node for root_cell_ (inner in Quantised mode, an empty leaf in Exact mode).
   void make_root();

@@ -32,6 +32,11 @@ Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& worl
 ///    straddle it, and drop points past the age limit. Subtrees wholly inside are not visited.
 void prune_shift_out(Tree& tree, const Motion& motion, UpdateStats& stats);
 
+/// 2b. Free-space clearing (Config::clearing, off by default): takes out of the tree and of
+///    `displaced` the held points the scan sees through (the rule in include/eco/config.hpp).
+void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint>& displaced,
+                      UpdateStats& stats);
+
 /// 3. Overlap refinement (R_over): re-centre the root on the sensor. Quantised: re-link the
 ///    lattice-fixed depth-k subtrees under new top levels. Exact: rebuild the subtrees whose bounds
 ///    no longer fit their moved octant. Returns `displaced` with the points of the subtrees it

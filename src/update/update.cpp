@@ -73,6 +73,7 @@ UpdateStats detail::run_update(Tree& tree, const Eigen::Isometry3d& world_T_sens
   UpdateStats stats = begin_update(tree.config(), world_T_sensor, scan);
   auto [motion, displaced] = advance_ego_motion(tree, world_T_sensor, stats);      // 1. pose, box: O(1)
   prune_shift_out(tree, motion, stats);                                            // 2. R_out
+  clear_free_space(tree, motion, scan, displaced, stats);                          //    seen through
   displaced = refine_overlap(tree, motion, std::move(displaced), stats);           // 3. R_over
   insert_shift_in(tree, motion, scan, std::move(displaced), stats);                // 4. R_in
   return stats;

@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -22,16 +24,17 @@
 namespace eco {
 namespace {
 
+/// The shortest text that reads back as `v`, as the messages write values.
 std::string text_of(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+  std::array<char, 32> buffer{};
+  const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
+  return std::string(buffer.data(), end);
 }
 
 /// Values each field must refuse, from its kind and range alone.
 std::vector<std::string> bad_values(const ConfigField& f) {
   if (f.kind == ConfigField::Kind::Choice) return {"Sideways", "", "1"};
+  if (f.kind == ConfigField::Kind::Switch) return {"maybe", "", "2", "yes"};
   std::vector<std::string> out{"abc", "", "nan", "inf", f.lo_open ? text_of(f.lo) : text_of(f.lo - 1)};
   if (std::isfinite(f.hi)) out.push_back(text_of(f.hi * 2 + 1));
   if (f.kind == ConfigField::Kind::Count) {
@@ -43,7 +46,9 @@ std::vector<std::string> bad_values(const ConfigField& f) {
 
 /// A value each field takes that is not its default.
 std::string good_value(const ConfigField& f) {
-  if (f.kind == ConfigField::Kind::Choice) return std::string(f.choices[f.get(Config{}) == 0.0 ? 1 : 0]);
+  if (f.kind == ConfigField::Kind::Choice || f.kind == ConfigField::Kind::Switch) {
+    return std::string(f.choices[f.get(Config{}) == 0.0 ? 1 : 0]);
+  }
   if (f.name == "density_cap.cell_size") return "0.5";
   if (f.name == "density_cap.max_points") return "3";
   if (f.name == "quantum_levels") return "4";
@@ -85,7 +90,7 @@ TEST(ConfigFields, TheTableNamesEveryFieldOnceWithDocsRangesAndValidDefaults) {
     f.parse(c, f.default_text());
     EXPECT_EQ(f.get(c), f.get(Config{})) << f.name;
   }
-  EXPECT_EQ(names.size(), 10u);
+  EXPECT_EQ(names.size(), 17u);
   EXPECT_THROW((void)config_field("box_sid"), std::invalid_argument);
 }
 
@@ -138,7 +143,7 @@ TEST(ConfigFields, EverySurfaceRefusesTheSameBadValuesByName) {
 
       // config.json: a number where the text is one, else the text
       double number = 0.0;
-      const bool numeric = f.kind != ConfigField::Kind::Choice && !bad.empty() &&
+      const bool numeric = f.kind != ConfigField::Kind::Choice && f.kind != ConfigField::Kind::Switch && !bad.empty() &&
                            (std::istringstream(bad) >> number) && std::isfinite(number);
       const nlohmann::json j = json_with(f, numeric ? nlohmann::json(number) : nlohmann::json(bad));
       try {

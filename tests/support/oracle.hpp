@@ -13,6 +13,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -50,6 +52,7 @@ class Oracle {
     } else if (memory_ == Memory::Nothing) {
       held_.clear();
     }
+    if (cfg_.clearing.enabled) clear_free_space(pose, scan);
 
     const Eigen::Matrix3d r = pose.linear();
     const Eigen::Vector3d t = pose.translation();
@@ -140,6 +143,53 @@ class Oracle {
     std::array<float, 3> p;
     std::uint32_t stamp;
   };
+
+  /// Free-space clearing as include/eco/config.hpp words it, ray by ray: a held point goes when
+  /// it is in the sensor's image, some return came back in its pixel or the 8 around it, and
+  /// every one of those lies more than the margin beyond it.
+  void clear_free_space(const Eigen::Isometry3d& pose, const std::vector<Eigen::Vector3f>& scan) {
+    struct Ray {
+      int row, column;
+      double range;
+    };
+    std::vector<Ray> rays;
+    for (const Eigen::Vector3f& s : scan) {
+      if (!s.allFinite()) continue;
+      double range = 0.0;
+      int row = 0, column = 0;
+      if (pixel(s.cast<double>(), row, column, range)) rays.push_back({row, column, range});
+    }
+    const Eigen::Matrix3d sensor_R_world = pose.linear().transpose();
+    const Eigen::Vector3d from_origin = origin_ - pose.translation();
+    const int columns = int(std::ceil(360.0 / cfg_.sensor.horizontal_resolution));
+    std::erase_if(held_, [&](const Held& h) {
+      const Eigen::Vector3d v =
+          sensor_R_world * (from_origin + Eigen::Vector3d(double(h.p[0]), double(h.p[1]), double(h.p[2])));
+      double range = 0.0;
+      int row = 0, column = 0;
+      if (!pixel(v, row, column, range)) return false;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const Ray& r : rays) {
+        const int apart = std::abs(r.column - column);
+        if (std::abs(r.row - row) <= 1 && std::min(apart, columns - apart) <= 1) nearest = std::min(nearest, r.range);
+      }
+      return std::isfinite(nearest) && nearest > range + cfg_.clearing.margin;
+    });
+  }
+  /// The range image pixel of sensor-frame point v (SensorModel's formulas); false outside it.
+  [[nodiscard]] bool pixel(const Eigen::Vector3d& v, int& row, int& column, double& range) const {
+    const SensorModel& m = cfg_.sensor;
+    range = v.norm();
+    if (range > m.max_range) return false;
+    const double elevation = std::atan2(v.z(), std::hypot(v.x(), v.y())) * 180.0 / M_PI;
+    const double azimuth = std::atan2(v.y(), v.x()) * 180.0 / M_PI;
+    if (elevation < m.vertical_fov_min || elevation >= m.vertical_fov_max) return false;
+    const int rows = int(std::ceil((m.vertical_fov_max - m.vertical_fov_min) / m.vertical_resolution));
+    const int columns = int(std::ceil(360.0 / m.horizontal_resolution));
+    row = std::min(rows - 1, int(std::floor((elevation - m.vertical_fov_min) / m.vertical_resolution)));
+    column = int(std::floor((azimuth + 180.0) / m.horizontal_resolution)) % columns;
+    return true;
+  }
 
   [[nodiscard]] bool in_box(const Eigen::Vector3d& centre, const std::array<float, 3>& f) const {
     for (int a = 0; a < 3; ++a) {

@@ -18,7 +18,10 @@ class ConfigFlags {
   ConfigFlags(CLI::App& cmd, const Config& defaults) : texts_(config_fields().size()) {
     std::size_t i = 0;
     for (const ConfigField& f : config_fields()) {
-      const char* type = f.kind == ConfigField::Kind::Real ? "REAL" : f.kind == ConfigField::Kind::Count ? "UINT" : "NAME";
+      const char* type = f.kind == ConfigField::Kind::Real    ? "REAL"
+                         : f.kind == ConfigField::Kind::Count  ? "UINT"
+                         : f.kind == ConfigField::Kind::Switch ? "BOOL"
+                                                               : "NAME";
       options_.push_back(
           cmd.add_option("--" + std::string(f.name), texts_[i++], f.summary(defaults))->type_name(type)->group("Tree configuration"));
     }

@@ -1,0 +1,74 @@
+// Free-space clearing (Config::clearing): the held points the new scan sees through leave the
+// tree. The scan's returns are binned into the sensor's range image once; each held point is then
+// projected into it and cleared when the nearest return around its pixel lies beyond it by more
+// than the margin (the rule in include/eco/config.hpp).
+
+#include "update/range_image.hpp"
+#include "update/stages.hpp"
+#include "update/subtree_filter.hpp"
+
+namespace eco::detail {
+namespace {
+
+/// Clearing's judgement: subtrees wholly beyond the sensor's range stay whole; the others are
+/// looked into point by point.
+class Clearer {
+ public:
+  Clearer(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats)
+      : t_(tree),
+        image_(tree.config().sensor, scan),
+        sensor_R_world_(motion.pose.linear().transpose()),
+        sensor_from_anchor_(motion.anchor - motion.pose.translation()),
+        margin_(tree.config().clearing.margin),
+        max_range_(tree.config().sensor.max_range),
+        stats_(stats) {}
+
+  [[nodiscard]] Verdict judge(const Node& n) const {
+    const Eigen::Vector3d sensor = -sensor_from_anchor_;  // in the anchor frame
+    const double nearest = std::sqrt(n.bounds.sq_dist({sensor[0], sensor[1], sensor[2]}));
+    // widened against rounding: a point's range is computed after the rotation
+    return nearest > max_range_ * (1.0 + 1e-9) + 1e-9 ? Verdict::KeepAll : Verdict::LookInside;
+  }
+  void drop(std::uint32_t) {}  // never judged DropAll
+  void filter_leaf(std::uint32_t id) {
+    t_.retain(id, [&](const StoredPoint& s) { return !cleared(s); });
+  }
+
+  /// Whether the scan sees through `s` (counted).
+  bool cleared(const StoredPoint& s) {
+    const Eigen::Vector3d v =
+        sensor_R_world_ * (sensor_from_anchor_ + Eigen::Vector3d(double(s.p[0]), double(s.p[1]), double(s.p[2])));
+    double range = 0.0;
+    const std::optional<Pixel> at = image_.pixel_of(v, range);
+    const bool seen_through = at && image_.returned_around(*at) && image_.nearest_around(*at) > range + margin_;
+    stats_.cleared += seen_through ? 1 : 0;
+    return seen_through;
+  }
+
+ private:
+  Tree& t_;
+  RangeImage image_;
+  Eigen::Matrix3d sensor_R_world_;
+  Eigen::Vector3d sensor_from_anchor_;  // anchor - sensor position: stored point + this = sensor-relative, world axes
+  double margin_ = 0.0;
+  double max_range_ = 0.0;
+  UpdateStats& stats_;
+};
+
+}  // namespace
+
+void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint>& displaced,
+                      UpdateStats& stats) {
+  if (!tree.config().clearing.enabled) return;
+  Clearer clearer(tree, motion, scan, stats);
+  std::erase_if(displaced, [&](const StoredPoint& s) {
+    if (!clearer.cleared(s)) return false;
+    tree.forget(s);
+    return true;
+  });
+  if (tree.root() != kNone && filter_subtree(tree, tree.root(), clearer)) {
+    tree.place_root(tree.root_cell(), tree.lattice());
+  }
+}
+
+}  // namespace eco::detail

@@ -1,0 +1,40 @@
+#include "update/range_image.hpp"
+
+#include <algorithm>
+
+namespace eco::detail {
+
+RangeImage::RangeImage(const SensorModel& sensor, ScanView scan)
+    : sensor_(sensor), rows_(sensor.rows()), columns_(sensor.columns()) {
+  std::vector<double> nearest(std::size_t(rows_) * std::size_t(columns_), kNoReturn);
+  for (std::size_t i = 0; i < scan.count; ++i) {
+    const float* p = scan.data + i * scan.stride;
+    const Eigen::Vector3d v(p[0], p[1], p[2]);
+    if (!v.allFinite()) continue;
+    double range = 0.0;
+    if (const std::optional<Pixel> at = pixel_of(v, range)) {
+      double& slot = nearest[index(at->row, at->column)];
+      slot = std::min(slot, range);
+    }
+  }
+  // The minimum over 3x3 neighbourhoods, separably: along each row (wrapping), then across rows.
+  std::vector<double> across(nearest.size());
+  for (int r = 0; r < rows_; ++r) {
+    for (int c = 0; c < columns_; ++c) {
+      const int left = c == 0 ? columns_ - 1 : c - 1;
+      const int right = c + 1 == columns_ ? 0 : c + 1;
+      across[index(r, c)] = std::min({nearest[index(r, left)], nearest[index(r, c)], nearest[index(r, right)]});
+    }
+  }
+  around_ = std::move(nearest);
+  for (int r = 0; r < rows_; ++r) {
+    for (int c = 0; c < columns_; ++c) {
+      double m = across[index(r, c)];
+      if (r > 0) m = std::min(m, across[index(r - 1, c)]);
+      if (r + 1 < rows_) m = std::min(m, across[index(r + 1, c)]);
+      around_[index(r, c)] = m;
+    }
+  }
+}
+
+}  // namespace eco::detail

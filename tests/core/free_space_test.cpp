@@ -1,0 +1,255 @@
+// Free-space clearing (Config::clearing): against a brute-force copy of the rule after every frame
+// of a simulated drive with moving cars (both re-centring modes, with and without a density cap,
+// across precision-origin moves), and on a scripted scene: a car crossing in front of a wall.
+
+#include "support/compare.hpp"
+#include "support/streams.hpp"
+
+#include <eco/io/kitti.hpp>
+#include <eco/sim/simulator.hpp>
+
+#include <tuple>
+
+namespace eco::test {
+namespace {
+
+/// The simulator's sensor, coarsened so that the brute force stays quick.
+sim::SimConfig small_drive(std::size_t frames, std::uint64_t seed) {
+  sim::SimConfig s;
+  s.seed = seed;
+  s.frames = frames;
+  s.lidar.beams = 16;
+  s.lidar.columns = 360;
+  s.city.moving_cars = 40;  // cars in view most frames
+  return s;
+}
+
+/// The same sensor as clearing's model: 16 beams over [-24.9, 2] degrees, 1 degree columns.
+SensorModel model_of(const sim::LidarModel& lidar) {
+  SensorModel m;
+  m.vertical_fov_min = lidar.fov_down_deg - 0.5;
+  m.vertical_fov_max = lidar.fov_up_deg + 0.5;
+  m.vertical_resolution = (lidar.fov_up_deg - lidar.fov_down_deg) / (lidar.beams - 1);
+  m.horizontal_resolution = 2.0 * 360.0 / lidar.columns;
+  m.max_range = 60.0;
+  return m;
+}
+
+using Params = std::tuple<Recentring, bool>;
+
+class ClearingOracle : public ::testing::TestWithParam<Params> {};
+
+TEST_P(ClearingOracle, HeldSetMatchesTheRuleRayByRayEveryFrame) {
+  const auto [recentring, capped] = GetParam();
+  const sim::Simulator drive(small_drive(30, 4));
+  Config cfg;
+  cfg.recentring = recentring;
+  cfg.box_side = 40.0;
+  cfg.clearing.enabled = true;
+  cfg.clearing.margin = 0.3;
+  cfg.sensor = model_of(drive.config().lidar);
+  if (capped) cfg.density_cap = {0.5, 2};
+  EgoOctree tree(cfg);
+  Oracle oracle(cfg);
+  std::mt19937 rng(3);
+  std::size_t cleared = 0;
+  const double x10 = drive.pose(10).translation().x();
+  bool rebased = false;
+  for (std::size_t t = 0; t < drive.size(); ++t) {
+    sim::SimFrame frame = drive.frame(t);
+    // From frame 10 on, the drive is carried 2 km out and drifts 3 m a frame: the precision origin
+    // moves (at 2048 m) while the box still holds points, which are handed on re-expressed.
+    if (t >= 10) frame.world_T_lidar.translation().x() += 2040.0 - x10 + 3.0 * double(t - 10);
+    const UpdateStats& u = tree.update(frame.world_T_lidar, frame.cloud.points);
+    oracle.update(frame.world_T_lidar, frame.cloud.points, tree.precision_origin());
+    cleared += u.cleared;
+    rebased = rebased || (u.rebased && t > 10);
+    expect_same_answers(tree, oracle, rng, "frame " + std::to_string(t));
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(cleared, 100u) << "clearing never bit";
+  EXPECT_TRUE(rebased) << "the precision origin never moved under held points";
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, ClearingOracle,
+                         ::testing::Combine(::testing::Values(Recentring::Quantised, Recentring::Exact),
+                                            ::testing::Bool()),
+                         [](const ::testing::TestParamInfo<Params>& p) {
+                           return name(std::get<0>(p.param)) + (std::get<1>(p.param) ? "_Capped" : "");
+                         });
+
+TEST(Clearing, OffChangesNothing) {
+  const sim::Simulator drive(small_drive(12, 6));
+  Config on;
+  on.clearing.enabled = true;
+  Config off = on;
+  off.clearing.enabled = false;
+  EgoOctree with(on), without(off), plain{Config{}};
+  std::size_t cleared = 0;
+  for (std::size_t t = 0; t < drive.size(); ++t) {
+    const sim::SimFrame frame = drive.frame(t);
+    cleared += with.update(frame.world_T_lidar, frame.cloud.points).cleared;
+    EXPECT_EQ(without.update(frame.world_T_lidar, frame.cloud.points).cleared, 0u);
+    plain.update(frame.world_T_lidar, frame.cloud.points);
+  }
+  EXPECT_EQ(sorted(without.points()), sorted(plain.points()));
+  EXPECT_GT(cleared, 0u);
+  EXPECT_LT(with.size(), without.size());
+}
+
+// --- the scripted scene ------------------------------------------------------------------------
+
+/// A flat world seen by a sensor 1.73 m above the ground at the origin: the ground (z = 0), a wall
+/// (x = 15 m, |y| <= 6 m, up to 4 m high) and a car 2 m deep and 4 m long, 0.3 m to 1.5 m above
+/// the ground, whose centre crosses from y = -10 m to y = +10 m at x = 8.5 m.
+struct Scene {
+  static constexpr double kHeight = 1.73;
+  static constexpr double kWallX = 15.0;
+
+  SensorModel sensor;
+
+  /// One return per pixel centre within 45 degrees of +x (sensor frame = world axes, shifted up).
+  [[nodiscard]] std::vector<Eigen::Vector3f> scan(double car_y, bool with_car) const {
+    std::vector<Eigen::Vector3f> out;
+    const int rows = sensor.rows();
+    const int columns = sensor.columns();
+    for (int r = 0; r < rows; ++r) {
+      const double elevation = (sensor.vertical_fov_min + (r + 0.5) * sensor.vertical_resolution) * M_PI / 180.0;
+      for (int c = 0; c < columns; ++c) {
+        const double azimuth = (-180.0 + (c + 0.5) * sensor.horizontal_resolution) * M_PI / 180.0;
+        if (std::abs(azimuth) > M_PI / 4) continue;
+        const Eigen::Vector3d d(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
+                                std::sin(elevation));
+        double best = std::numeric_limits<double>::infinity();
+        if (d.z() < 0) best = kHeight / -d.z();  // the ground
+        const double to_wall = kWallX / d.x();    // the wall
+        const Eigen::Vector3d w = to_wall * d;
+        if (std::abs(w.y()) <= 6.0 && w.z() + kHeight <= 4.0 && w.z() + kHeight >= 0.0) best = std::min(best, to_wall);
+        if (with_car) best = std::min(best, hit_car(d, car_y));
+        if (best < 50.0) out.push_back((best * d).cast<float>());
+      }
+    }
+    return out;
+  }
+
+  /// The distance along unit direction d to the car's box (slab test), infinity on a miss.
+  static double hit_car(const Eigen::Vector3d& d, double car_y) {
+    const Eigen::Vector3d lo(7.5, car_y - 2.0, 0.3 - kHeight), hi(9.5, car_y + 2.0, 1.5 - kHeight);
+    double near = 0.0, far = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+      if (d[a] == 0.0) {
+        if (0.0 < lo[a] || 0.0 > hi[a]) return std::numeric_limits<double>::infinity();
+        continue;
+      }
+      double t0 = lo[a] / d[a], t1 = hi[a] / d[a];
+      if (t0 > t1) std::swap(t0, t1);
+      near = std::max(near, t0);
+      far = std::min(far, t1);
+    }
+    return near <= far ? near : std::numeric_limits<double>::infinity();
+  }
+};
+
+TEST(Clearing, ACarCrossingInFrontOfAWallLeavesNoTrailAndTheWallStays) {
+  Scene scene;
+  scene.sensor.vertical_resolution = 1.0;
+  scene.sensor.horizontal_resolution = 0.5;
+  Config cfg;
+  cfg.box_side = 40.0;
+  cfg.sensor = scene.sensor;
+  cfg.clearing.enabled = true;
+  Config keeping = cfg;
+  keeping.clearing.enabled = false;
+  EgoOctree clearing(cfg), trails(keeping);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation().z() = Scene::kHeight;
+  for (int t = 0; t <= 20; ++t) {
+    const std::vector<Eigen::Vector3f> scan = scene.scan(-10.0 + t, /*with_car=*/true);
+    clearing.update(pose, scan);
+    trails.update(pose, scan);
+  }
+  // the car has left the field of view; the wall is seen whole again
+  const std::vector<Eigen::Vector3f> last = scene.scan(0.0, /*with_car=*/false);
+  clearing.update(pose, last);
+  trails.update(pose, last);
+  auto on_car_path = [](const Eigen::Vector3d& p) { return p.x() > 7.4 && p.x() < 9.6 && p.z() > 0.25; };
+  auto static_points = [&](const EgoOctree& tree) {
+    std::vector<Eigen::Vector3d> out;
+    for (const Eigen::Vector3d& p : tree.points()) {
+      if (!on_car_path(p)) out.push_back(p);
+    }
+    return sorted(out);
+  };
+  std::size_t trail = 0;
+  for (const Eigen::Vector3d& p : trails.points()) trail += on_car_path(p) ? 1 : 0;
+  ASSERT_GT(trail, 500u) << "the car left no trail to clear";
+  for (const Eigen::Vector3d& p : clearing.points()) EXPECT_FALSE(on_car_path(p)) << p.transpose();
+  const std::vector<Eigen::Vector3d> kept = static_points(clearing);
+  EXPECT_EQ(kept, static_points(trails));  // every wall and ground point stays
+  std::size_t wall = 0;
+  for (const Eigen::Vector3d& p : kept) wall += std::abs(p.x() - Scene::kWallX) < 1e-3 ? 1 : 0;
+  EXPECT_GT(wall, 1000u);
+}
+
+TEST(Clearing, PointsBehindSurfacesOutsideTheViewOrBeyondRangeStay) {
+  Config cfg;
+  cfg.box_side = 60.0;
+  cfg.clearing.enabled = true;
+  cfg.sensor.vertical_fov_min = -10.0;
+  cfg.sensor.vertical_fov_max = 10.0;
+  cfg.sensor.vertical_resolution = 1.0;
+  cfg.sensor.horizontal_resolution = 1.0;
+  cfg.sensor.max_range = 20.0;
+  EgoOctree tree(cfg);
+  const std::vector<Eigen::Vector3f> first{
+      {5.0f, 0.0f, 0.0f},    // in front: the next scan sees through it
+      {25.0f, 0.0f, 0.0f},   // behind the next scan's return, and beyond max_range
+      {12.0f, 0.1f, 0.0f},   // behind the next scan's return
+      {5.0f, 0.0f, 3.0f},    // above the field of view (31 degrees)
+      {0.0f, 5.0f, 0.0f}};   // a column where nothing comes back
+  tree.update(Eigen::Isometry3d::Identity(), first);
+  const std::vector<Eigen::Vector3f> second{{10.0f, 0.0f, 0.0f}};
+  const UpdateStats& u = tree.update(Eigen::Isometry3d::Identity(), second);
+  EXPECT_EQ(u.cleared, 1u);
+  std::vector<Eigen::Vector3d> expected{{25, 0, 0}, {12, 0.1, 0}, {5, 0, 3}, {0, 5, 0}, {10, 0, 0}};
+  for (Eigen::Vector3d& p : expected) p = p.cast<float>().cast<double>();
+  EXPECT_EQ(sorted(tree.points()), sorted(expected));
+  EXPECT_EQ(tree.check_invariants(), "");
+  // a return just within the margin clears nothing
+  cfg.clearing.margin = 5.5;
+  EgoOctree wide(cfg);
+  wide.update(Eigen::Isometry3d::Identity(), first);
+  EXPECT_EQ(wide.update(Eigen::Isometry3d::Identity(), second).cleared, 0u);
+}
+
+TEST(Clearing, ABadSensorModelIsRefusedByName) {
+  auto refused = [](const Config& c, const std::string& field) {
+    try {
+      EgoOctree tree(c);
+      ADD_FAILURE() << field << ": taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  };
+  Config c;
+  c.sensor.vertical_resolution = 0.0;
+  refused(c, "sensor.vertical_resolution");
+  c = Config{};
+  c.sensor.horizontal_resolution = -0.2;
+  refused(c, "sensor.horizontal_resolution");
+  c = Config{};
+  c.sensor.vertical_fov_max = c.sensor.vertical_fov_min;
+  refused(c, "sensor.vertical_fov_max");
+  c = Config{};
+  c.sensor.horizontal_resolution = 1e-4;  // 3.6 million columns
+  refused(c, "sensor.horizontal_resolution");
+  c = Config{};
+  c.sensor.max_range = std::numeric_limits<double>::quiet_NaN();
+  refused(c, "sensor.max_range");
+  c = Config{};
+  c.clearing.margin = 0.0;
+  refused(c, "clearing.margin");
+}
+
+}  // namespace
+}  // namespace eco::test
