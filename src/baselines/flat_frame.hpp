@@ -17,12 +17,16 @@ namespace eco::baselines {
 
 class FlatFrame {
  public:
-  /// Throws std::invalid_argument for a bad configuration or an age limit (`who` has none).
+  /// Throws std::invalid_argument for a bad configuration, an age limit or free-space clearing
+  /// (`who` has neither).
   FlatFrame(const Config& config, const std::string& who) : cfg_(config) {
     cfg_.validate();
     if (cfg_.max_age_frames > 0) {
       throw std::invalid_argument("the " + who + " baseline has no age limit (max_age_frames = " +
                                   std::to_string(cfg_.max_age_frames) + ")");
+    }
+    if (cfg_.clearing.enabled) {
+      throw std::invalid_argument("the " + who + " baseline has no free-space clearing (clearing.enabled = true)");
     }
   }
 

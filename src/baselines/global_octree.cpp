@@ -49,6 +49,8 @@ void GlobalOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan
   const detail::Motion motion = detail::advance_ego_motion_fixed_origin(t, world_T_sensor);
   if (t.root() == detail::kNone) t.place_root(detail::Cell{}, first_lattice(t.config(), motion.box));
   if (deletes_) detail::prune_shift_out(t, motion, stats);
+  std::vector<detail::StoredPoint> none;  // the origin never moves: nothing is handed on
+  detail::clear_free_space(t, motion, scan, none, stats);
   while (const std::optional<int> octant = growth_toward(t, motion.box)) t.grow_root(*octant);
   detail::insert_scan(t, motion, scan, stats);  // from the root: the doubled roots sit off ECO's lattice
 }

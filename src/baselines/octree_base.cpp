@@ -25,6 +25,7 @@ Config rebuilt_from_the_scan(Config config) {
   config = rebuilt_from_the_box(config);
   config.insert_policy = InsertPolicy::AllInBox;  // every scan point in the box, whatever came before
   config.max_age_frames = 0;
+  config.clearing.enabled = false;  // nothing earlier to clear
   return config;
 }
 
@@ -43,6 +44,7 @@ class OctreeBase final : public TreeMethod {
     UpdateStats stats = detail::begin_update(t.config(), world_T_sensor, scan);
     auto [motion, held] = detail::advance_ego_motion(t, world_T_sensor, stats);  // a moved origin hands back all
     detail::prune_shift_out(t, motion, stats);  // what left the box or aged out
+    detail::clear_free_space(t, motion, scan, held, stats);  // what the scan sees through
     t.take_points(held);                        // the rest, to be rebuilt from scratch
     if (memory_ == Memory::Nothing) {
       held.clear();

@@ -4,7 +4,9 @@ namespace eco::workloads {
 
 WorkloadFrame DynamicWorkload::frame(std::size_t index) const {
   io::KittiFrame scan = sequence_.read(index);
-  return {index, scan.world_T_lidar, std::move(scan.cloud.points)};
+  std::vector<std::uint32_t> labels;
+  if (sequence_.has_labels()) labels = sequence_.read_labels(index);
+  return {index, scan.world_T_lidar, std::move(scan.cloud.points), std::move(labels)};
 }
 
 }  // namespace eco::workloads

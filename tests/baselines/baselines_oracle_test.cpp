@@ -96,6 +96,28 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::Values(Motion::Smooth, Motion::Still, Motion::Teleport)),
     capped_name);
 
+/// The octrees clear free space as ECO does (the same stage); scan_only has nothing to clear.
+class BaselineClearing : public ::testing::TestWithParam<CappedParams> {};
+
+TEST_P(BaselineClearing, FreeSpaceClearingAsTheContractSays) {
+  const auto [name, policy, motion] = GetParam();
+  Config cfg;
+  cfg.insert_policy = policy;
+  cfg.clearing.enabled = true;
+  cfg.clearing.margin = 0.1;
+  cfg.sensor = {-60.0, 60.0, 4.0, 4.0, 30.0};  // coarse pixels over the streams' scattered scans
+  if (name == "scan_only") cfg.clearing.enabled = false;
+  stream_and_compare(name, cfg, Stream(motion, Cloud::Surfaces, cfg.box_side, 7u), 12);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    OctreeMethods, BaselineClearing,
+    ::testing::Combine(::testing::Values("eco", "eco_exact", "octree_base", "ioctree_global", "ioctree_target",
+                                         "scan_only"),
+                       ::testing::Values(InsertPolicy::ShiftInOnly, InsertPolicy::AllInBox),
+                       ::testing::Values(Motion::Smooth, Motion::Still, Motion::Teleport)),
+    capped_name);
+
 /// The flat baselines honour the density cap as the octrees do (a set of occupied cells kept as
 /// points come and go) but have no age limit.
 class FlatCapped : public ::testing::TestWithParam<CappedParams> {};
@@ -130,6 +152,16 @@ TEST(Baselines, UnknownNameAndUnsupportedConfigAreRejectedByName) {
       FAIL() << flat << ": no exception";
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find("max_age_frames = 3"), std::string::npos) << e.what();
+    }
+  }
+  Config clearing;
+  clearing.clearing.enabled = true;
+  for (const char* flat : {"nanoflann", "pcl_octree", "scan_pass"}) {
+    try {
+      (void)make_method(flat, clearing);
+      FAIL() << flat << ": no exception";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("clearing.enabled = true"), std::string::npos) << e.what();
     }
   }
   Config bad;

@@ -13,6 +13,7 @@
 /// | `nanoflann`      | a nanoflann k-d tree over the points in the box, rebuilt every frame    |
 /// | `pcl_octree`     | PCL 1.13's OctreePointCloudSearch, kept incrementally (voxel leaves)    |
 /// | `scan_pass`      | transform, box test and copy of the scan, no structure: the update's floor |
+/// | `scan_only`      | octree_base rebuilt from the current scan alone (the paper's dynamic reference) |
 ///
 /// All hold points the way ECO does (float offsets from a precision origin) and take in the same
 /// scan points (the Config's insert policy), so their held sets are equal — except
@@ -73,8 +74,9 @@ class Method {
 
 /// The method called `name` with `config` (L, N_max, insert policy, ...). Throws
 /// std::invalid_argument for an unknown name (listing the known ones) or a configuration the
-/// method cannot honour (`nanoflann` and `pcl_octree` have no age limit; `scan_pass` has none and
-/// ignores the density cap).
+/// method cannot honour (`nanoflann`, `pcl_octree` and `scan_pass` have no age limit and no
+/// free-space clearing; `scan_pass` ignores the density cap). The octrees honour clearing
+/// (Config::clearing) through ECO's stage; `scan_only` has nothing to clear.
 [[nodiscard]] std::unique_ptr<Method> make_method(std::string_view name, const Config& config);
 
 }  // namespace eco::baselines

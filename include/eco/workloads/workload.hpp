@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@ struct WorkloadFrame {
   std::size_t index = 0;
   Eigen::Isometry3d world_T_sensor = Eigen::Isometry3d::Identity();
   std::vector<Eigen::Vector3f> points;  ///< sensor frame
+  std::vector<std::uint32_t> labels;    ///< SemanticKITTI label per point; empty when the source has none
 };
 
 class Workload {
