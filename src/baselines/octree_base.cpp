@@ -43,12 +43,14 @@ class OctreeBase final : public TreeMethod {
     detail::Tree& t = tree_;
     UpdateStats stats = detail::begin_update(t.config(), world_T_sensor, scan);
     auto [motion, held] = detail::advance_ego_motion(t, world_T_sensor, stats);  // a moved origin hands back all
-    detail::prune_shift_out(t, motion, stats);  // what left the box or aged out
-    detail::clear_free_space(t, motion, scan, held, stats);  // what the scan sees through
-    t.take_points(held);                        // the rest, to be rebuilt from scratch
-    if (memory_ == Memory::Nothing) {
-      held.clear();
-      t.recount_density(held);  // no cell holds a point any more
+    if (memory_ == Memory::PointsStillInTheBox) {
+      detail::prune_shift_out(t, motion, stats);               // what left the box or aged out
+      detail::clear_free_space(t, motion, scan, held, stats);  // what the scan sees through
+      t.take_points(held);                                     // the rest, to be rebuilt from scratch
+    } else {
+      t.take_points(held);
+      held.clear();             // nothing earlier is kept
+      t.recount_density(held);  // so no cell holds a point any more
     }
     held = detail::refine_overlap(t, motion, std::move(held), stats);  // a new, empty root on the box
     t.rebuild_start_table(0);  // the paper's: every point from the root

@@ -61,8 +61,8 @@ void export_frame(const RunOptions& o, const EgoOctree& tree, std::size_t t) {
 /// same configuration with clearing off (a second tree, run alongside for the comparison).
 class TrailReport {
  public:
-  TrailReport(const Config& config) : meter_(config.box_side / 2), clears_(config.clearing.enabled) {
-    if (clears_) {
+  explicit TrailReport(const Config& config) : meter_(config.box_side / 2) {
+    if (config.clearing.enabled) {
       Config off = config;
       off.clearing.enabled = false;
       keeping_ = std::make_unique<EgoOctree>(off);
@@ -106,7 +106,6 @@ class TrailReport {
 
  private:
   bench::TrailMeter meter_;
-  bool clears_ = false;
   std::unique_ptr<EgoOctree> keeping_;  // clearing off, for the comparison
   std::size_t trail_on_ = 0, trail_off_ = 0, static_off_ = 0, static_removed_ = 0;
   double keeping_ms_ = 0.0;
