@@ -74,6 +74,13 @@ void Config::validate() const {
            "with sensor.vertical_resolution = " + std::to_string(sensor.vertical_resolution) +
                " deg gives a range image of more than 2^24 pixels");
   }
+  if (max_age_seconds > 0.0 && !attributes.time) {
+    reject("max_age_seconds", max_age_seconds, "needs attributes.time = true (the age is read from each point's time)");
+  }
+  if (max_age_seconds > 0.0 && max_age_frames > 0) {
+    reject("max_age_seconds", max_age_seconds,
+           "and max_age_frames = " + std::to_string(max_age_frames) + " are both set: give the age limit in one unit");
+  }
   if (density_cap.enabled()) {
     const double cell = density_cap.cell_size;
     if (cell <= 0.0) reject("density_cap.cell_size", cell, "must be > 0 m while density_cap.max_points > 0");

@@ -23,7 +23,7 @@ constexpr std::array<std::string_view, 2> kSwitch{"false", "true"};  // a Switch
   [](const Config& c) { return double(c.member); },                      \
   [](Config& c, double v) { c.member = type(v); }
 
-const std::array<ConfigField, 17> kFields{{
+const std::array<ConfigField, 21> kFields{{
     {"box_side", ConfigField::Kind::Real, "m", "L: side of the ego cube held around the sensor; typical 10-100",
      0.0, 1e5, true, {}, ECO_FIELD_ACCESS(box_side, double)},
     {"leaf_capacity", ConfigField::Kind::Count, "points", "N_max: a leaf with more points splits; typical 8-64",
@@ -50,6 +50,18 @@ const std::array<ConfigField, 17> kFields{{
      ECO_FIELD_ACCESS(density_cap.max_points, std::uint32_t)},
     {"max_age_frames", ConfigField::Kind::Count, "frames", "drop points inserted more than this many frames ago; 0 = off",
      0.0, kMaxCount, false, {}, ECO_FIELD_ACCESS(max_age_frames, std::uint32_t)},
+    {"max_age_seconds", ConfigField::Kind::Real, "s",
+     "drop points whose time is more than this before the latest time taken in; 0 = off; needs "
+     "attributes.time, not with max_age_frames",
+     0.0, 1e9, false, {}, ECO_FIELD_ACCESS(max_age_seconds, double)},
+    {"attributes.ids", ConfigField::Kind::Switch, "", "keep each scan point's uint32 id and return it with queries",
+     0.0, 1.0, false, kSwitch, ECO_FIELD_ACCESS(attributes.ids, bool)},
+    {"attributes.intensity", ConfigField::Kind::Switch, "",
+     "keep each scan point's intensity and return it with queries", 0.0, 1.0, false, kSwitch,
+     ECO_FIELD_ACCESS(attributes.intensity, bool)},
+    {"attributes.time", ConfigField::Kind::Switch, "",
+     "keep each scan point's time [s] and return it with queries (max_age_seconds needs it)", 0.0, 1.0, false,
+     kSwitch, ECO_FIELD_ACCESS(attributes.time, bool)},
     {"clearing.enabled", ConfigField::Kind::Switch, "",
      "free-space clearing: remove held points the new scan sees through (a return farther along the same "
      "ray); off by default",

@@ -23,6 +23,7 @@ const Config& EgoOctree::config() const { return tree_->config(); }
 const Eigen::Isometry3d& EgoOctree::pose() const { return tree_->pose(); }
 std::uint32_t EgoOctree::frame_count() const { return tree_->frame(); }
 Eigen::Vector3d EgoOctree::precision_origin() const { return tree_->anchor(); }
+double EgoOctree::time_origin() const { return tree_->to_seconds(0.0f); }
 
 Eigen::AlignedBox3d EgoOctree::ego_box() const {
   if (tree_->frame() == 0) return Eigen::AlignedBox3d();  // empty
@@ -41,6 +42,8 @@ std::vector<Eigen::Vector3d> EgoOctree::points() const {
   for_each_point([&](const Eigen::Vector3d& p) { out.push_back(p); });
   return out;
 }
+
+std::vector<HeldPoint> EgoOctree::points_with_attributes() const { return detail::held_points(*tree_); }
 
 Stats EgoOctree::stats() const { return detail::tree_stats(*tree_); }
 
@@ -68,12 +71,22 @@ std::vector<Neighbor> EgoOctree::knn(const Eigen::Vector3d& query, std::size_t k
   return out;
 }
 
+std::size_t EgoOctree::knn(const Eigen::Vector3d& query, std::span<std::uint32_t> ids, std::span<double> sq_dists,
+                          Frame frame) const {
+  return detail::knn_ids_query(*tree_, query, ids, sq_dists, frame);
+}
+
 std::vector<Neighbor> EgoOctree::radius(const Eigen::Vector3d& query, double radius, Frame frame) const {
   return detail::radius_query(*tree_, query, radius, frame);
 }
 
 std::vector<Eigen::Vector3d> EgoOctree::box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, Frame frame) const {
   return detail::box_query(*tree_, lo, hi, frame);
+}
+
+std::vector<HeldPoint> EgoOctree::box_with_attributes(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                                     Frame frame) const {
+  return detail::box_held_query(*tree_, lo, hi, frame);
 }
 
 std::vector<VoxelKey> EgoOctree::voxel_keys(double resolution) const {
@@ -101,6 +114,16 @@ void for_each_held(const Tree& t, const std::function<void(const Eigen::Vector3d
   if (t.root() == kNone) return;
   walk_leaves(
       t, t.root(), [](const Aabb&) { return 2; }, [&](const StoredPoint& s, bool) { visit(t.to_world(s.p)); });
+}
+
+std::vector<HeldPoint> held_points(const Tree& t) {
+  std::vector<HeldPoint> out;
+  out.reserve(t.size());
+  if (t.root() == kNone) return out;
+  walk_leaves(
+      t, t.root(), [](const Aabb&) { return 2; },
+      [&](const StoredPoint& s, bool) { out.push_back({t.to_world(s.p), attributes_of(t, s)}); });
+  return out;
 }
 
 Stats tree_stats(const Tree& t) {

@@ -77,6 +77,18 @@ struct FreeSpaceClearing {
   double margin = 0.3;    ///< [m] a return must lie this much beyond a point to clear it; >= 0.01.
 };
 
+/// Which per-point attributes of the scans (ScanView::ids, intensities, times) the tree stores and
+/// returns with every query; each costs 4 bytes per held point. Off by default. A kept attribute
+/// must come with every non-empty scan.
+/// Times are stored as float offsets from a time origin, a multiple of 64 s kept within 128 s of
+/// the latest time taken in (the way coordinates are kept near a precision origin), so a point's
+/// time comes back within 2^-24 of its distance from that origin (8 us while it is recent).
+struct KeptAttributes {
+  bool ids = false;        ///< a std::uint32_t per point
+  bool intensity = false;  ///< a float per point
+  bool time = false;       ///< seconds per point; needed by max_age_seconds
+};
+
 /// Configuration of an EgoOctree.
 struct Config {
   double box_side = 20.0;  ///< L [m]: side of the ego cube held around the sensor; typical 10–100.
@@ -89,6 +101,10 @@ struct Config {
   InsertPolicy insert_policy = InsertPolicy::AllInBox;
   DensityCap density_cap{};  ///< optional, off by default.
   std::uint32_t max_age_frames = 0;  ///< drop points inserted more than this many frames ago; 0 = off.
+  /// [s] drop points whose time is more than this before the latest time taken in (scan points
+  /// too: they are not inserted); 0 = off. Needs attributes.time; not with max_age_frames.
+  double max_age_seconds = 0.0;
+  KeptAttributes attributes{};  ///< per-point ids, intensities, times; none by default.
   FreeSpaceClearing clearing{};  ///< optional, off by default.
   SensorModel sensor{};  ///< the LiDAR's geometry (free-space clearing); an HDL-64E by default.
   /// [m] Quantised only: the voxel size you will ask voxel maps at. The quantum is rounded up to

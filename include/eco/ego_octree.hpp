@@ -12,6 +12,9 @@
 /// * Points are stored as float offsets from a world "precision origin" kept within 2 km of the
 ///   sensor (moved in steps of 1024 m), so precision does not degrade with distance travelled:
 ///   a stored coordinate is within 0.25 mm of the double-precision world point.
+/// * Per-point attributes (Config::attributes: ids, intensities, times) are stored with their
+///   point and come back with every query (Neighbor::attributes, HeldPoint::attributes); an age
+///   limit may be given in frames or in seconds (Config::max_age_seconds, read from the times).
 /// * Bad input throws std::invalid_argument naming the value, and leaves the tree unchanged.
 ///   Non-finite scan points are skipped and counted, never thrown on.
 ///
@@ -62,6 +65,12 @@ class EgoOctree {
   /// Caller-owned buffer variant: writes at most out.size() neighbours, returns how many.
   std::size_t knn(const Eigen::Vector3d& query, std::span<Neighbor> out,
                   Frame frame = Frame::World) const;
+  /// The same as ids and squared distances, nanoflann's way: writes the ids of at most
+  /// ids.size() nearest points and their squared distances, nearest first, into the caller's
+  /// buffers (no allocation); returns how many. Throws std::invalid_argument unless
+  /// Config::attributes.ids is on and the two spans have the same size.
+  std::size_t knn(const Eigen::Vector3d& query, std::span<std::uint32_t> ids, std::span<double> sq_dists,
+                  Frame frame = Frame::World) const;
 
   /// Held points with ||p - query|| <= radius (a plain radius in metres, not squared),
   /// nearest first.
@@ -72,6 +81,10 @@ class EgoOctree {
   [[nodiscard]] std::vector<Eigen::Vector3d> box(const Eigen::Vector3d& lo,
                                                  const Eigen::Vector3d& hi,
                                                  Frame frame = Frame::World) const;
+
+  /// The same points with their attributes.
+  [[nodiscard]] std::vector<HeldPoint> box_with_attributes(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                                           Frame frame = Frame::World) const;
 
   /// Keys of the occupied voxels of the world-aligned grid of side `resolution` [m], unique, in no
   /// particular order (sort them if you need one). Voxel i on an axis holds the stored coordinate
@@ -87,6 +100,8 @@ class EgoOctree {
 
   /// Every held point, in world coordinates, in no particular order.
   [[nodiscard]] std::vector<Eigen::Vector3d> points() const;
+  /// Every held point with its attributes, world coordinates, in no particular order.
+  [[nodiscard]] std::vector<HeldPoint> points_with_attributes() const;
   /// Calls `visit` once per held point with its world coordinates.
   void for_each_point(const std::function<void(const Eigen::Vector3d&)>& visit) const;
 
@@ -101,6 +116,9 @@ class EgoOctree {
   [[nodiscard]] Eigen::AlignedBox3d ego_box() const;
   /// The world point that stored float coordinates are offsets from (a multiple of 1024 m).
   [[nodiscard]] Eigen::Vector3d precision_origin() const;
+  /// The time [s] that stored times are offsets from (Config::attributes.time; a multiple of
+  /// 64 s within 128 s of the latest time taken in; 0 before any).
+  [[nodiscard]] double time_origin() const;
   /// Updates taken so far.
   [[nodiscard]] std::uint32_t frame_count() const;
 

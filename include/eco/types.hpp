@@ -13,10 +13,16 @@ namespace eco {
 /// A read-only view of a scan: `count` points of three floats (x, y, z, in metres, sensor frame),
 /// `stride` floats apart. Works over `Eigen::Vector3f` arrays, packed N x 3 arrays, and KITTI's
 /// N x 4 (x, y, z, reflectance) records alike. The caller owns the memory for the call's duration.
+///
+/// Per-point attributes, each null or `count` entries, point i's at index i: the tree stores those
+/// Config::attributes keeps (a kept one must be given) and ignores the others.
 struct ScanView {
   const float* data = nullptr;
   std::size_t count = 0;
   std::size_t stride = 3;  ///< floats from one point to the next (>= 3)
+  const std::uint32_t* ids = nullptr;  ///< the caller's id of each point (an index, a label, ...)
+  const float* intensities = nullptr;  ///< intensity or reflectance, any finite or non-finite float
+  const double* times = nullptr;       ///< [s] when each point was measured; finite and >= 0
 
   ScanView() = default;
   ScanView(const float* points, std::size_t n, std::size_t stride_floats = 3)
@@ -36,10 +42,26 @@ enum class Frame {
   Ego,    ///< world axes, origin at the current sensor position (the paper's F_eco,t)
 };
 
+/// What a held point carries besides its position (ScanView's attributes): zero where
+/// Config::attributes does not keep one. `time` comes back as stored (see Config::attributes).
+struct PointAttributes {
+  std::uint32_t id = 0;
+  float intensity = 0.0f;
+  double time = 0.0;  ///< [s]
+  friend bool operator==(const PointAttributes&, const PointAttributes&) = default;
+};
+
 /// One k-nearest-neighbour or radius result.
 struct Neighbor {
   Eigen::Vector3d point;  ///< in the frame of the query
   double sq_dist = 0.0;   ///< squared Euclidean distance [m^2]
+  PointAttributes attributes;
+};
+
+/// A held point with its attributes (box and whole-map results).
+struct HeldPoint {
+  Eigen::Vector3d point;  ///< in the frame asked for
+  PointAttributes attributes;
 };
 
 /// Integer index of a world-aligned voxel: voxel i spans [i*res, (i+1)*res) per axis.
@@ -67,6 +89,7 @@ struct UpdateStats {
   std::size_t skipped_by_policy = 0;  ///< finite scan points outside Box(p_t) (or outside R_in)
   std::size_t skipped_by_density = 0; ///< scan points refused by the density cap
   std::size_t pruned = 0;             ///< held points that left the box (R_out)
+  std::size_t skipped_by_age = 0;     ///< scan points already older than max_age_seconds
   std::size_t aged_out = 0;           ///< held points dropped by the age limit
   std::size_t cleared = 0;            ///< held points the scan saw through (free-space clearing)
   std::size_t relinked_subtrees = 0;  ///< subtrees kept whole and attached to a new parent

@@ -54,6 +54,14 @@ std::vector<Field<FreeSpaceClearing>> Record<FreeSpaceClearing>::fields() {
   };
 }
 
+std::vector<Field<KeptAttributes>> Record<KeptAttributes>::fields() {
+  return {
+      field("ids", &KeptAttributes::ids, doc_of("attributes.ids")),
+      field("intensity", &KeptAttributes::intensity, doc_of("attributes.intensity")),
+      field("time", &KeptAttributes::time, doc_of("attributes.time")),
+  };
+}
+
 std::vector<Field<SensorModel>> Record<SensorModel>::fields() {
   return {
       field("vertical_fov_min", &SensorModel::vertical_fov_min, doc_of("sensor.vertical_fov_min")),
@@ -75,6 +83,10 @@ std::vector<Field<Config>> Record<Config>::fields() {
       field("density_cap", &Config::density_cap, "DensityCap: at most max_points points per world-aligned cell of side "
                                                   "cell_size; off by default."),
       field("max_age_frames", &Config::max_age_frames, doc_of("max_age_frames")),
+      field("max_age_seconds", &Config::max_age_seconds, doc_of("max_age_seconds")),
+      field("attributes", &Config::attributes,
+            "KeptAttributes: which per-point attributes (ids, intensity, time) the tree stores and returns; "
+            "none by default."),
       field("clearing", &Config::clearing,
             "FreeSpaceClearing: remove held points the new scan sees through (off by default); see sensor."),
       field("sensor", &Config::sensor,
@@ -95,6 +107,8 @@ void bind_config(py::module_& m) {
         list_parts(f.name, static_cast<const DensityCap*>(nullptr));
       } else if (f.name == "clearing") {
         list_parts(f.name, static_cast<const FreeSpaceClearing*>(nullptr));
+      } else if (f.name == "attributes") {
+        list_parts(f.name, static_cast<const KeptAttributes*>(nullptr));
       } else if (f.name == "sensor") {
         list_parts(f.name, static_cast<const SensorModel*>(nullptr));
       } else {
@@ -107,7 +121,7 @@ void bind_config(py::module_& m) {
   }
   m.def("config_fields", &config_fields_list,
         "The table of Config's fields (as C++, the eco command and config.json use it): one dict per field "
-        "with name (dotted for the parts' fields: density_cap., clearing., sensor.), kind ('real', 'count', 'choice' or 'switch': a bool), unit, doc, range, lo, hi, "
+        "with name (dotted for the parts' fields: density_cap., attributes., clearing., sensor.), kind ('real', 'count', 'choice' or 'switch': a bool), unit, doc, range, lo, hi, "
         "lo_open, choices and default.");
   py::enum_<Recentring>(m, "Recentring", "How the root cell follows the sensor.")
       .value("Quantised", Recentring::Quantised,
@@ -131,6 +145,11 @@ void bind_config(py::module_& m) {
       Access::ReadWrite);
   bind_record<FreeSpaceClearing>(
       m, "Free-space clearing: each update removes the held points the new scan sees through.",
+      Access::ReadWrite);
+  bind_record<KeptAttributes>(
+      m,
+      "Which per-point attributes of the scans the tree stores and returns with every query (each costs 4 "
+      "bytes per held point); a kept one must come with every scan.",
       Access::ReadWrite);
   bind_record<SensorModel>(
       m,

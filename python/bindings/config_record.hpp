@@ -1,5 +1,5 @@
 #pragma once
-// Config and its parts (DensityCap, FreeSpaceClearing, SensorModel) as records (records.hpp), for every binding that takes a Config.
+// Config and its parts (DensityCap, KeptAttributes, FreeSpaceClearing, SensorModel) as records (records.hpp), for every binding that takes a Config.
 
 #include "records.hpp"
 
@@ -17,6 +17,12 @@ template <>
 struct Record<FreeSpaceClearing> {
   static constexpr const char* name = "FreeSpaceClearing";
   static std::vector<Field<FreeSpaceClearing>> fields();  // config.cpp
+};
+
+template <>
+struct Record<KeptAttributes> {
+  static constexpr const char* name = "KeptAttributes";
+  static std::vector<Field<KeptAttributes>> fields();  // config.cpp
 };
 
 template <>

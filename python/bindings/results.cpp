@@ -37,6 +37,7 @@ struct Record<UpdateStats> {
               "finite scan points outside Box(p_t) (or outside R_in)"),
         field("skipped_by_density", &U::skipped_by_density,
               "scan points refused by the density cap"),
+        field("skipped_by_age", &U::skipped_by_age, "scan points already older than max_age_seconds"),
         field("pruned", &U::pruned, "held points that left the box (R_out)"),
         field("aged_out", &U::aged_out, "held points dropped by the age limit"),
         field("cleared", &U::cleared, "held points the scan saw through (free-space clearing)"),

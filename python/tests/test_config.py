@@ -19,11 +19,17 @@ CHANGED = {
     "insert_policy": eco.InsertPolicy.AllInBox,
     "density_cap": eco.DensityCap(cell_size=0.2, max_points=3),
     "max_age_frames": 40,
+    "max_age_seconds": 2.5,
+    "attributes": eco.KeptAttributes(ids=True, intensity=True, time=True),
     "clearing": eco.FreeSpaceClearing(enabled=True, margin=0.5),
     "sensor": eco.SensorModel(vertical_fov_min=-15.0, vertical_fov_max=15.0, vertical_resolution=2.0,
                               horizontal_resolution=0.4, max_range=100.0),
     "voxel_size": 0.25,
 }
+
+
+# What a field's changed value needs of the others to be valid.
+NEEDS = {"max_age_seconds": {"attributes": eco.KeptAttributes(time=True)}}
 
 
 def test_defaults_are_the_cpp_defaults():
@@ -36,6 +42,8 @@ def test_defaults_are_the_cpp_defaults():
         "insert_policy": "AllInBox",
         "density_cap": {"cell_size": 0.0, "max_points": 0},
         "max_age_frames": 0,
+        "max_age_seconds": 0.0,
+        "attributes": {"ids": False, "intensity": False, "time": False},
         "clearing": {"enabled": False, "margin": 0.3},
         "sensor": {"vertical_fov_min": -24.9, "vertical_fov_max": 2.0, "vertical_resolution": 0.42,
                    "horizontal_resolution": 0.2, "max_range": 100.0},
@@ -50,22 +58,22 @@ def test_fields_are_the_cpp_fields_in_order():
 @pytest.mark.parametrize("name", list(CHANGED))
 def test_each_field_round_trips(name):
     value = CHANGED[name]
-    by_keyword = eco.Config(**{name: value})
+    by_keyword = eco.Config(**NEEDS.get(name, {}), **{name: value})
     assert getattr(by_keyword, name) == value
-    by_attribute = eco.Config()
+    by_attribute = eco.Config(**NEEDS.get(name, {}))
     setattr(by_attribute, name, value)
     assert by_attribute == by_keyword
     assert eco.Config(**by_keyword.to_dict()) == by_keyword
     assert eco.Config(**json.loads(json.dumps(by_keyword.to_dict()))) == by_keyword
     assert pickle.loads(pickle.dumps(by_keyword)) == by_keyword
     assert eco.EgoOctree(by_keyword).config == by_keyword
-    assert eco.EgoOctree(**{name: value}).config == by_keyword
+    assert eco.EgoOctree(**NEEDS.get(name, {}), **{name: value}).config == by_keyword
     if name != "recentring":  # unchanged fields keep their defaults
         assert by_keyword.recentring == eco.Recentring.Quantised
 
 
 def test_all_fields_together():
-    config = eco.Config(**CHANGED)
+    config = eco.Config(**{**CHANGED, "max_age_frames": 0})  # an age limit in frames or in seconds
     assert config.to_dict()["density_cap"] == {"cell_size": 0.2, "max_points": 3}
     assert eco.EgoOctree(config=config).config == config
     assert "leaf_capacity=12" in repr(config) and "Recentring.Exact" in repr(config)
@@ -214,6 +222,7 @@ def test_a_config_json_section_is_a_config():
     written = {"box_side": 18.0, "leaf_capacity": 32, "min_cell_size": 0.05, "recentring": "Quantised",
                "quantum_levels": 3, "insert_policy": "AllInBox",
                "density_cap": {"cell_size": 0.2, "max_points": 1}, "max_age_frames": 0,
+               "max_age_seconds": 0.0, "attributes": {"ids": True, "intensity": False, "time": False},
                "clearing": {"enabled": True, "margin": 0.3},
                "sensor": {"vertical_fov_min": -24.9, "vertical_fov_max": 2.0, "vertical_resolution": 0.42,
                           "horizontal_resolution": 0.2, "max_range": 100.0},

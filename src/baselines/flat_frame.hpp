@@ -17,8 +17,8 @@ namespace eco::baselines {
 
 class FlatFrame {
  public:
-  /// Throws std::invalid_argument for a bad configuration, an age limit or free-space clearing
-  /// (`who` has neither).
+  /// Throws std::invalid_argument for a bad configuration, an age limit, free-space clearing or
+  /// kept attributes (`who` has none of them).
   FlatFrame(const Config& config, const std::string& who) : cfg_(config) {
     cfg_.validate();
     if (cfg_.max_age_frames > 0) {
@@ -27,6 +27,10 @@ class FlatFrame {
     }
     if (cfg_.clearing.enabled) {
       throw std::invalid_argument("the " + who + " baseline has no free-space clearing (clearing.enabled = true)");
+    }
+    if (cfg_.attributes.ids || cfg_.attributes.intensity || cfg_.attributes.time) {
+      throw std::invalid_argument("the " + who + " baseline keeps no per-point attributes (attributes.ids, "
+                                  ".intensity or .time = true)");
     }
   }
 
@@ -76,7 +80,7 @@ class FlatFrame {
   /// Held point p as a result for query q (anchor frame): world point, squared distance in double.
   [[nodiscard]] Neighbor neighbor(const std::array<double, 3>& q, const std::array<float, 3>& p) const {
     const double dx = double(p[0]) - q[0], dy = double(p[1]) - q[1], dz = double(p[2]) - q[2];
-    return {world(p), dx * dx + dy * dy + dz * dz};
+    return {world(p), dx * dx + dy * dy + dz * dz, {}};
   }
   /// Empty when every point of `held` lies in the current ego box, else what is wrong.
   template <class Points>

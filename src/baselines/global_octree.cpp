@@ -46,7 +46,7 @@ void GlobalOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan
   detail::Tree& t = tree_;
   UpdateStats stats = detail::begin_update(t.config(), world_T_sensor, scan);
   // the precision origin stays where the drive began, like the root
-  const detail::Motion motion = detail::advance_ego_motion_fixed_origin(t, world_T_sensor);
+  const detail::Motion motion = detail::advance_ego_motion_fixed_origin(t, world_T_sensor, scan);
   if (t.root() == detail::kNone) t.place_root(detail::Cell{}, first_lattice(t.config(), motion.box));
   if (deletes_) detail::prune_shift_out(t, motion, stats);
   std::vector<detail::StoredPoint> none;  // the origin never moves: nothing is handed on

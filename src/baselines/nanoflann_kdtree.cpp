@@ -55,7 +55,7 @@ class NanoflannKdTree final : public Method {
       frame_.forget(p);
       return true;
     });
-    step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p) {
+    step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p, std::size_t) {
       if (frame_.admits(p)) held_.p.push_back(p);
     });
     index_ = std::make_unique<KdTree>(3, held_, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));
@@ -71,7 +71,7 @@ class NanoflannKdTree final : public Method {
     sq_dists.resize(k);
     const std::array<double, 3> q = frame_.local(query);
     const std::size_t found = index_->knnSearch(q.data(), k, indices.data(), sq_dists.data());
-    for (std::size_t i = 0; i < found; ++i) out[i] = {frame_.world(held_.p[indices[i]]), sq_dists[i]};
+    for (std::size_t i = 0; i < found; ++i) out[i] = {frame_.world(held_.p[indices[i]]), sq_dists[i], {}};
     return found;
   }
   using Method::knn;
@@ -86,7 +86,7 @@ class NanoflannKdTree final : public Method {
     const double bound = std::nextafter(r * r, std::numeric_limits<double>::infinity());
     index_->radiusSearch(q.data(), bound, found, nanoflann::SearchParams(32, 0.0f, true));
     for (const auto& [i, d2] : found) {
-      if (d2 <= r * r) out.push_back({frame_.world(held_.p[i]), d2});
+      if (d2 <= r * r) out.push_back({frame_.world(held_.p[i]), d2, {}});
     }
     return out;
   }

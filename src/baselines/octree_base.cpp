@@ -42,7 +42,7 @@ class OctreeBase final : public TreeMethod {
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
     detail::Tree& t = tree_;
     UpdateStats stats = detail::begin_update(t.config(), world_T_sensor, scan);
-    auto [motion, held] = detail::advance_ego_motion(t, world_T_sensor, stats);  // a moved origin hands back all
+    auto [motion, held] = detail::advance_ego_motion(t, world_T_sensor, scan, stats);  // a moved origin hands back all
     if (memory_ == Memory::PointsStillInTheBox) {
       detail::prune_shift_out(t, motion, stats);               // what left the box or aged out
       detail::clear_free_space(t, motion, scan, held, stats);  // what the scan sees through

@@ -45,7 +45,7 @@ class ScanPass final : public Method {
     Batch& fresh = batches_.emplace_back();
     fresh.alive = box;
     fresh.points.reserve(scan.count);
-    step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p) { fresh.points.push_back(p); });
+    step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p, std::size_t) { fresh.points.push_back(p); });
     for (const auto& p : fresh.points) fresh.bounds.grow(p[0], p[1], p[2]);
   }
 

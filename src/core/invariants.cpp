@@ -42,7 +42,7 @@ class Checker {
       t_.points().for_each(n.link, n.count, [&](const detail::StoredPoint& s) {
         ++count;
         bounds.grow(s.p[0], s.p[1], s.p[2]);
-        oldest = std::min(oldest, s.stamp);
+        oldest = std::min(oldest, t_.age_key(s));
         if (!t_.lattice().contains(cell, s.p)) fail(id, "point outside its cell");
         if (in_box_ && !box_.contains(s.p[0], s.p[1], s.p[2])) fail(id, "point outside the ego box");
       });

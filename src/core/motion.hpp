@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 
 namespace eco::detail {
@@ -26,6 +27,19 @@ inline Box ego_box(const Eigen::Vector3d& position, const Eigen::Vector3d& ancho
   return b;
 }
 
+/// The maps's clock, kept while Config::attributes.time is on: stored times are float offsets
+/// from `origin`, which follows the latest time in steps of 64 s (as the precision origin follows
+/// the sensor), so a recent time is stored to within 2^-24 * 128 s.
+struct Clock {
+  double latest = -std::numeric_limits<double>::infinity();  ///< [s] the latest time taken in; -inf before any
+  double origin = 0.0;           ///< [s] a multiple of 64 s
+  std::optional<double> shift;   ///< old origin - new origin when the origin moved this frame (exact)
+
+  /// The clock once a scan whose latest time is `scan_latest` (-inf: no times) is taken in; a
+  /// clock that does not `move` keeps its first origin for good.
+  [[nodiscard]] Clock after(double scan_latest, bool move = true) const;
+};
+
 struct Motion {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< world_T_sensor
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();        ///< the precision origin, world
@@ -35,6 +49,7 @@ struct Motion {
   std::uint32_t frame = 1;      ///< this frame's number, 1 for the first (insertion stamps)
   /// (old origin - new origin) when the precision origin moved this frame: held points move by it.
   std::optional<Eigen::Vector3d> origin_shift;
+  Clock clock;                  ///< the map's clock after this frame's scan
 };
 
 /// Stored point `p` re-expressed against a moved precision origin (`shift` = old origin - new
@@ -48,9 +63,11 @@ inline std::array<float, 3> rebased(const std::array<float, 3>& p, const Eigen::
 Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor,
                                      bool first);
 
-/// The motion to `pose` after `last` (none: the first frame). `moves_origin` false keeps the
-/// first frame's precision origin for good (a global map that never re-expresses its points).
+/// The motion to `pose` after `last` (none: the first frame), with a scan whose latest time is
+/// `scan_latest` (-inf: none). `moves_origin` false keeps the first frame's precision and time
+/// origins for good (a global map that never re-expresses its points).
 Motion next_motion(const Eigen::Isometry3d& pose, const std::optional<Motion>& last, double box_side,
-                   bool moves_origin = true);
+                   bool moves_origin = true,
+                   double scan_latest = -std::numeric_limits<double>::infinity());
 
 }  // namespace eco::detail

@@ -1,8 +1,9 @@
 #pragma once
 // Leaf point buckets: each leaf's points lie in one contiguous structure-of-arrays block (x[], y[],
-// z[], then stamps[] when kept), so a leaf is read front to back with no pointer chase. Blocks come
-// in size classes growing by about 1.5x; each class is a pool of fixed-size pages with a free list,
-// so growing a pool never moves or copies what it holds.
+// z[], then one array per kept column: stamps, ids, intensities, times), so a leaf is read front
+// to back with no pointer chase. Blocks come in size classes growing by about 1.5x; each class is
+// a pool of fixed-size pages with a free list, so growing a pool never moves or copies what it
+// holds.
 
 #include "core/node_store.hpp"
 
@@ -16,24 +17,46 @@
 
 namespace eco::detail {
 
-/// A point as the tree stores it: anchor-frame float coordinates and its insertion stamp.
+/// A point as the tree stores it: anchor-frame float coordinates, its insertion stamp, and the
+/// scan's attributes (zero where not kept); `time` is seconds from the tree's time origin.
 struct StoredPoint {
   std::array<float, 3> p{};
   std::uint32_t stamp = 0;
+  std::uint32_t id = 0;
+  float intensity = 0.0f;
+  float time = 0.0f;
 };
 
-/// The points of one leaf, read in place: coordinates by axis, stamps (null when not kept).
+/// The optional per-point columns of a PointStore.
+struct Columns {
+  bool stamps = false, ids = false, intensities = false, times = false;
+  [[nodiscard]] int count() const { return int(stamps) + int(ids) + int(intensities) + int(times); }
+};
+
+/// The points of one leaf, read in place: coordinates by axis, then the kept columns (null when
+/// not kept).
 struct PointSpan {
   const float* x;
   const float* y;
   const float* z;
   const std::uint32_t* stamps;
+  const std::uint32_t* ids;
+  const float* intensities;
+  const float* times;
   std::uint32_t size;
+
+  [[nodiscard]] StoredPoint operator[](std::uint32_t i) const {
+    return {{x[i], y[i], z[i]},
+            stamps ? stamps[i] : 0u,
+            ids ? ids[i] : 0u,
+            intensities ? intensities[i] : 0.0f,
+            times ? times[i] : 0.0f};
+  }
 };
 
 class PointStore {
  public:
-  explicit PointStore(bool keep_stamps = false) : keep_stamps_(keep_stamps) {}
+  explicit PointStore(Columns columns = {}) : columns_(columns) {}
 
   /// Appends [first, last) to the block at `link` that holds `count` points (kNone: no block yet).
   void append(std::uint32_t& link, std::uint32_t count, const StoredPoint* first, const StoredPoint* last) {
@@ -47,16 +70,17 @@ class PointStore {
 
   /// The `count` points of the block at `link`.
   [[nodiscard]] PointSpan span(std::uint32_t link, std::uint32_t count) const {
-    if (link == kNone) return {nullptr, nullptr, nullptr, nullptr, 0};
+    if (link == kNone) return {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, 0};
     const Block b = block(link);
-    return {b.x, b.x + b.capacity, b.x + 2 * std::size_t(b.capacity), b.stamps, count};
+    return {b.x, b.x + b.capacity, b.x + 2 * std::size_t(b.capacity), b.stamps, b.ids, b.intensities, b.times,
+            count};
   }
 
   /// Calls f(const StoredPoint&) for each of the `count` points at `link`.
   template <class F>
   void for_each(std::uint32_t link, std::uint32_t count, F&& f) const {
     const PointSpan s = span(link, count);
-    for (std::uint32_t i = 0; i < s.size; ++i) f(StoredPoint{{s.x[i], s.y[i], s.z[i]}, s.stamps ? s.stamps[i] : 0u});
+    for (std::uint32_t i = 0; i < s.size; ++i) f(s[i]);
   }
 
   /// Keeps the points for which keep(const StoredPoint&) holds, in order; returns how many.
@@ -90,7 +114,7 @@ class PointStore {
     link = kNone;
   }
 
-  [[nodiscard]] bool keeps_stamps() const { return keep_stamps_; }
+  [[nodiscard]] const Columns& columns() const { return columns_; }
   [[nodiscard]] std::size_t bytes() const {
     std::size_t total = pools_.capacity() * sizeof(Pool);
     for (const Pool& p : pools_) {
@@ -127,6 +151,9 @@ class PointStore {
   struct Block {
     float* x;
     std::uint32_t* stamps;
+    std::uint32_t* ids;
+    float* intensities;
+    float* times;
     std::uint32_t capacity;
   };
 
@@ -139,17 +166,35 @@ class PointStore {
     const std::uint32_t i = index_of(link);
     std::byte* at = p.pages[i >> p.per_page_shift].get() + (i & ((1u << p.per_page_shift) - 1)) * p.block_bytes;
     const std::uint32_t cap = capacity_of(c);
-    return {reinterpret_cast<float*>(at),
-            keep_stamps_ ? reinterpret_cast<std::uint32_t*>(at + 3 * sizeof(float) * cap) : nullptr, cap};
+    std::byte* column = at + 3 * sizeof(float) * cap;  // the kept columns follow x, y, z in order
+    auto next = [&]<class T>(bool kept, T*) -> T* {
+      if (!kept) return nullptr;
+      T* out = reinterpret_cast<T*>(column);
+      column += sizeof(T) * cap;
+      return out;
+    };
+    Block b{reinterpret_cast<float*>(at), nullptr, nullptr, nullptr, nullptr, cap};
+    b.stamps = next(columns_.stamps, b.stamps);
+    b.ids = next(columns_.ids, b.ids);
+    b.intensities = next(columns_.intensities, b.intensities);
+    b.times = next(columns_.times, b.times);
+    return b;
   }
   static StoredPoint read(const Block& b, std::uint32_t i) {
-    return {{b.x[i], b.x[b.capacity + i], b.x[2 * std::size_t(b.capacity) + i]}, b.stamps ? b.stamps[i] : 0u};
+    return {{b.x[i], b.x[b.capacity + i], b.x[2 * std::size_t(b.capacity) + i]},
+            b.stamps ? b.stamps[i] : 0u,
+            b.ids ? b.ids[i] : 0u,
+            b.intensities ? b.intensities[i] : 0.0f,
+            b.times ? b.times[i] : 0.0f};
   }
   static void write(Block& b, std::uint32_t i, const StoredPoint& s) {
     b.x[i] = s.p[0];
     b.x[b.capacity + i] = s.p[1];
     b.x[2 * std::size_t(b.capacity) + i] = s.p[2];
     if (b.stamps) b.stamps[i] = s.stamp;
+    if (b.ids) b.ids[i] = s.id;
+    if (b.intensities) b.intensities[i] = s.intensity;
+    if (b.times) b.times[i] = s.time;
   }
 
   /// Makes the block at `link` (holding `count`) hold at least `needed` points.
@@ -172,7 +217,7 @@ class PointStore {
     if (pools_.size() <= std::size_t(c)) pools_.resize(std::size_t(c) + 1);
     Pool& p = pools_[std::size_t(c)];
     if (p.block_bytes == 0) {
-      p.block_bytes = std::size_t(capacity_of(c)) * (keep_stamps_ ? 4 : 3) * sizeof(float);
+      p.block_bytes = std::size_t(capacity_of(c)) * std::size_t(3 + columns_.count()) * sizeof(float);
       while ((p.block_bytes << (p.per_page_shift + 1)) <= kPageBytes) ++p.per_page_shift;
       p.page_bytes = p.block_bytes << p.per_page_shift;
     }
@@ -190,7 +235,7 @@ class PointStore {
     return std::uint32_t(c) << kIndexBits | i;
   }
 
-  bool keep_stamps_;
+  Columns columns_;
   std::vector<Pool> pools_;
 };
 

@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
+#include <limits>
 
 namespace eco::detail {
 
-Tree::Tree(const Config& config) : cfg_(config), points_(config.max_age_frames > 0) {
+Tree::Tree(const Config& config)
+    : cfg_(config),
+      points_(Columns{config.max_age_frames > 0, config.attributes.ids, config.attributes.intensity,
+                      config.attributes.time}) {
   cfg_.validate();
   min_leaf_depth_ = cfg_.recentring == Recentring::Quantised ? int(cfg_.quantum_levels) : 0;
   lattice_.max_depth = cfg_.max_depth();
@@ -28,6 +33,7 @@ std::size_t Tree::bytes() const {
 
 void Tree::set_motion(const Motion& m) {
   motion_ = m;
+  age_cutoff_ = compute_age_cutoff();
   density_grid_ = WorldGrid({m.anchor[0], m.anchor[1], m.anchor[2]}, cfg_.density_cap.cell_size);
 }
 
@@ -37,12 +43,26 @@ bool Tree::keeps(const StoredPoint& s, const Box& box, UpdateStats& stats) {
     forget(s);
     return false;
   }
-  if (s.stamp < age_cutoff()) {
+  if (age_key(s) < age_cutoff()) {
     ++stats.aged_out;
     forget(s);
     return false;
   }
   return true;
+}
+
+std::uint32_t Tree::compute_age_cutoff() const {
+  if (cfg_.max_age_seconds > 0.0) {
+    if (!motion_ || motion_->clock.latest == -std::numeric_limits<double>::infinity()) return 0;
+    // stored time f is aged when origin + f < latest - max age, i.e. when f is below the least
+    // float at or above c (no float lies between c and that one)
+    const double c = motion_->clock.latest - cfg_.max_age_seconds - motion_->clock.origin;
+    float least = float(c);
+    if (double(least) < c) least = std::nextafter(least, std::numeric_limits<float>::infinity());
+    return time_key(least);
+  }
+  const std::uint32_t age = cfg_.max_age_frames;
+  return age > 0 && frame() > age ? frame() - age : 0;
 }
 
 void Tree::recount_density(const std::vector<StoredPoint>& held) {
@@ -250,7 +270,7 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, S
     n.count += m;
     for (const StoredPoint* s = from; s != to; ++s) {
       n.bounds.grow(s->p[0], s->p[1], s->p[2]);
-      n.oldest = std::min(n.oldest, s->stamp);
+      n.oldest = std::min(n.oldest, age_key(*s));
     }
     return;
   }
@@ -271,7 +291,7 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, S
   for (const StoredPoint* s = from; s != to; ++s) {
     ++begin[std::size_t(octant(*s)) + 1];
     bounds.grow(s->p[0], s->p[1], s->p[2]);
-    oldest = std::min(oldest, s->stamp);
+    oldest = std::min(oldest, age_key(*s));
   }
   for (std::size_t o = 0; o < 8; ++o) begin[o + 1] += begin[o];
   std::array<std::uint32_t, 8> at{};
@@ -325,7 +345,7 @@ void Tree::split(std::uint32_t id, const Cell& cell) {
     n.count += std::uint32_t(to - from);
     for (const StoredPoint* s = from; s != to; ++s) {
       n.bounds.grow(s->p[0], s->p[1], s->p[2]);
-      n.oldest = std::min(n.oldest, s->stamp);
+      n.oldest = std::min(n.oldest, age_key(*s));
     }
   }
   scratch_.resize(base);
@@ -347,7 +367,7 @@ void Tree::refit(std::uint32_t id) {
   if (n.leaf) {
     points_.for_each(n.link, n.count, [&](const StoredPoint& s) {
       bounds.grow(s.p[0], s.p[1], s.p[2]);
-      oldest = std::min(oldest, s.stamp);
+      oldest = std::min(oldest, age_key(s));
     });
   } else {
     std::uint32_t count = 0;

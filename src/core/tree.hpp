@@ -13,6 +13,7 @@
 
 #include <Eigen/Geometry>
 
+#include <bit>
 #include <cstdint>
 #include <optional>
 #include <utility>
@@ -63,10 +64,21 @@ class Tree {
   /// Anchor-frame float coordinates of a world point (the stored representation).
   [[nodiscard]] std::array<float, 3> to_stored(const Eigen::Vector3d& world) const;
   [[nodiscard]] Eigen::Vector3d to_world(const std::array<float, 3>& stored) const;
-  /// Points stamped before this frame are past the age limit (0 while no limit applies).
-  [[nodiscard]] std::uint32_t age_cutoff() const {
-    const std::uint32_t age = cfg_.max_age_frames;
-    return age > 0 && frame() > age ? frame() - age : 0;
+  /// What the age limit compares: the insertion frame (max_age_frames), or the stored time as an
+  /// order-keeping integer (max_age_seconds). Nodes keep the smallest below them.
+  [[nodiscard]] std::uint32_t age_key(const StoredPoint& s) const {
+    return cfg_.max_age_seconds > 0.0 ? time_key(s.time) : s.stamp;
+  }
+  /// Points whose age key is below this are past the age limit (0 while no limit applies).
+  [[nodiscard]] std::uint32_t age_cutoff() const { return age_cutoff_; }
+  /// A stored point's time [s], as the caller gave it to within the clock's precision.
+  [[nodiscard]] double to_seconds(float stored_time) const {
+    return motion_ ? motion_->clock.origin + double(stored_time) : 0.0;
+  }
+  /// The order-keeping integer of float `f`: a < b exactly when time_key(a) < time_key(b).
+  static std::uint32_t time_key(float f) {
+    const auto u = std::bit_cast<std::uint32_t>(f + 0.0f);  // + 0: -0 becomes +0
+    return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
   }
   /// Calls f(const StoredPoint&) for every point below `id`.
   template <class F>
@@ -176,6 +188,8 @@ class Tree {
   [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
     return CellCounts::key(density_grid_.index(p));
   }
+  /// The age cutoff of the current motion.
+  [[nodiscard]] std::uint32_t compute_age_cutoff() const;
   /// Creates the root node for root_cell_ (inner in Quantised mode, an empty leaf in Exact mode).
   void make_root();
   /// The child of inner node `id` (cell `cell`) at `octant`, created empty if missing.
@@ -207,6 +221,7 @@ class Tree {
   Lattice lattice_;
   int min_leaf_depth_ = 0;
   std::optional<Motion> motion_;
+  std::uint32_t age_cutoff_ = 0;  // of motion_
   StartTable start_;
   CellCounts density_;  // points per density-cap cell, kept while the cap is on
   WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor

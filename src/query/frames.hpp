@@ -31,6 +31,11 @@ inline Eigen::Vector3d from_stored(const Tree& t, const std::array<float, 3>& p,
   return frame == Frame::Ego ? Eigen::Vector3d(w - t.pose().translation()) : w;
 }
 
+/// The attributes of stored point `s` as the caller gave them (zero where not kept).
+inline PointAttributes attributes_of(const Tree& t, const StoredPoint& s) {
+  return {s.id, s.intensity, t.points().columns().times ? t.to_seconds(s.time) : 0.0};
+}
+
 inline void require_finite(const Eigen::Vector3d& v, const char* what, const char* name) {
   if (!v.allFinite()) {
     std::ostringstream s;

@@ -8,20 +8,65 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace eco {
 namespace {
 
-/// Searches into the caller's buffer (no allocation per query): `out` keeps the best so far,
-/// nearest first, their points in the anchor frame until the search ends.
+/// Results as Neighbors: points in the anchor frame until the search ends (stored floats, held
+/// exactly in double), attributes as stored.
+class NeighborResults {
+ public:
+  explicit NeighborResults(std::span<Neighbor> out, bool with_attributes)
+      : out_(out), with_attributes_(with_attributes) {}
+  [[nodiscard]] std::size_t capacity() const { return out_.size(); }
+  [[nodiscard]] double sq_dist(std::size_t i) const { return out_[i].sq_dist; }
+  void move_down(std::size_t i) { out_[i] = out_[i - 1]; }
+  void put(std::size_t i, double d2, const detail::PointSpan& c, std::uint32_t j) {
+    Neighbor& n = out_[i];
+    n.point = {c.x[j], c.y[j], c.z[j]};
+    n.sq_dist = d2;
+    const detail::StoredPoint s = with_attributes_ ? c[j] : detail::StoredPoint{};
+    n.attributes = {s.id, s.intensity, double(s.time)};  // the time as stored: see knn_query
+  }
+
+ private:
+  std::span<Neighbor> out_;
+  bool with_attributes_;
+};
+
+/// Results as ids and squared distances (nanoflann's style).
+class IdResults {
+ public:
+  IdResults(std::span<std::uint32_t> ids, std::span<double> sq_dists) : ids_(ids), sq_dists_(sq_dists) {}
+  [[nodiscard]] std::size_t capacity() const { return ids_.size(); }
+  [[nodiscard]] double sq_dist(std::size_t i) const { return sq_dists_[i]; }
+  void move_down(std::size_t i) {
+    ids_[i] = ids_[i - 1];
+    sq_dists_[i] = sq_dists_[i - 1];
+  }
+  void put(std::size_t i, double d2, const detail::PointSpan& c, std::uint32_t j) {
+    ids_[i] = c.ids[j];
+    sq_dists_[i] = d2;
+  }
+
+ private:
+  std::span<std::uint32_t> ids_;
+  std::span<double> sq_dists_;
+};
+
+/// Searches into the caller's buffers (no allocation per query): `results` keeps the best so
+/// far, nearest first.
+template <class Results>
 class KnnSearch {
  public:
-  KnnSearch(const detail::Tree& t, const std::array<double, 3>& q, std::span<Neighbor> out)
-      : t_(t), q_(q), out_(out) {}
+  KnnSearch(const detail::Tree& t, const std::array<double, 3>& q, Results results)
+      : t_(t), q_(q), results_(results) {}
 
   /// The number found: min(k, points held).
   std::size_t run() {
-    if (!out_.empty() && t_.root() != detail::kNone) visit(t_.root());
+    if (results_.capacity() > 0 && t_.root() != detail::kNone) visit(t_.root());
     return found_;
   }
 
@@ -30,12 +75,13 @@ class KnnSearch {
 
   /// Inserts in order: a shift of the farther ones, cheaper than a heap for the small k of
   /// registration (nanoflann's result sets do the same).
-  void offer(double d2, const std::array<float, 3>& p) {
-    if (found_ < out_.size()) ++found_;
+  void offer(double d2, const detail::PointSpan& c, std::uint32_t j) {
+    const std::size_t k = results_.capacity();
+    if (found_ < k) ++found_;
     std::size_t i = found_ - 1;
-    for (; i > 0 && out_[i - 1].sq_dist > d2; --i) out_[i] = out_[i - 1];
-    out_[i] = {Eigen::Vector3d(p[0], p[1], p[2]), d2};
-    if (found_ == out_.size()) worst_ = out_[found_ - 1].sq_dist;
+    for (; i > 0 && results_.sq_dist(i - 1) > d2; --i) results_.move_down(i);
+    results_.put(i, d2, c, j);
+    if (found_ == k) worst_ = results_.sq_dist(found_ - 1);
   }
 
   void visit(std::uint32_t id) {
@@ -47,7 +93,7 @@ class KnnSearch {
         const double dy = double(c.y[i]) - q_[1];
         const double dz = double(c.z[i]) - q_[2];
         const double d2 = dx * dx + dy * dy + dz * dz;
-        if (d2 < worst()) offer(d2, {c.x[i], c.y[i], c.z[i]});
+        if (d2 < worst()) offer(d2, c, i);
       }
       return;
     }
@@ -72,7 +118,7 @@ class KnnSearch {
 
   const detail::Tree& t_;
   std::array<double, 3> q_;
-  std::span<Neighbor> out_;
+  Results results_;
   std::size_t found_ = 0;
   double worst_ = std::numeric_limits<double>::infinity();  // the k-th distance once k are found
 };
@@ -83,11 +129,28 @@ namespace detail {
 
 std::size_t knn_query(const Tree& t, const Eigen::Vector3d& query, std::span<Neighbor> out, Frame frame) {
   require_finite(query, "knn", "query");
-  const std::size_t found = KnnSearch(t, to_anchor_frame(t, query, frame), out).run();
-  for (Neighbor& n : out.first(found)) {  // stored floats, held exactly in double until now
+  const bool times = t.points().columns().times;
+  const bool with_attributes = t.points().columns().ids || t.points().columns().intensities || times;
+  const std::size_t found =
+      KnnSearch(t, to_anchor_frame(t, query, frame), NeighborResults(out, with_attributes)).run();
+  for (Neighbor& n : out.first(found)) {
     n.point = from_stored(t, {float(n.point[0]), float(n.point[1]), float(n.point[2])}, frame);
+    if (times) n.attributes.time = t.to_seconds(float(n.attributes.time));
   }
   return found;
+}
+
+std::size_t knn_ids_query(const Tree& t, const Eigen::Vector3d& query, std::span<std::uint32_t> ids,
+                          std::span<double> sq_dists, Frame frame) {
+  require_finite(query, "knn", "query");
+  if (!t.points().columns().ids) {
+    throw std::invalid_argument("eco::EgoOctree::knn: ids asked for, but Config::attributes.ids is off");
+  }
+  if (ids.size() != sq_dists.size()) {
+    throw std::invalid_argument("eco::EgoOctree::knn: ids.size() = " + std::to_string(ids.size()) +
+                                " differs from sq_dists.size() = " + std::to_string(sq_dists.size()));
+  }
+  return KnnSearch(t, to_anchor_frame(t, query, frame), IdResults(ids, sq_dists)).run();
 }
 
 }  // namespace detail

@@ -24,15 +24,18 @@ std::vector<Neighbor> radius_query(const Tree& t, const Eigen::Vector3d& query, 
         const double dy = double(s.p[1]) - q[1];
         const double dz = double(s.p[2]) - q[2];
         const double d2 = dx * dx + dy * dy + dz * dz;
-        if (d2 <= r2) out.push_back({from_stored(t, s.p, frame), d2});
+        if (d2 <= r2) out.push_back({from_stored(t, s.p, frame), d2, attributes_of(t, s)});
       });
   std::sort(out.begin(), out.end(),
             [](const Neighbor& a, const Neighbor& b) { return a.sq_dist < b.sq_dist; });
   return out;
 }
 
-std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                                       Frame frame) {
+namespace {
+
+/// Calls visit(stored point) for each held point in the closed box [lo, hi] given in `frame`.
+template <class Visit>
+void visit_box(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, Frame frame, Visit&& visit) {
   require_finite(lo, "box", "lo");
   require_finite(hi, "box", "hi");
   if ((lo.array() > hi.array()).any()) {
@@ -45,13 +48,28 @@ std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Vector3d& lo,
   b.half_open = false;
   b.lo = to_anchor_frame(t, lo, frame);
   b.hi = to_anchor_frame(t, hi, frame);
-  std::vector<Eigen::Vector3d> out;
-  if (t.root() == kNone) return out;
+  if (t.root() == kNone) return;
   walk_leaves(
       t, t.root(), [&](const Aabb& bounds) { return b.misses(bounds) ? 0 : b.contains_all(bounds) ? 2 : 1; },
       [&](const StoredPoint& s, bool whole) {
-        if (whole || b.contains(s.p[0], s.p[1], s.p[2])) out.push_back(from_stored(t, s.p, frame));
+        if (whole || b.contains(s.p[0], s.p[1], s.p[2])) visit(s);
       });
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                       Frame frame) {
+  std::vector<Eigen::Vector3d> out;
+  visit_box(t, lo, hi, frame, [&](const StoredPoint& s) { out.push_back(from_stored(t, s.p, frame)); });
+  return out;
+}
+
+std::vector<HeldPoint> box_held_query(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                      Frame frame) {
+  std::vector<HeldPoint> out;
+  visit_box(t, lo, hi, frame,
+            [&](const StoredPoint& s) { out.push_back({from_stored(t, s.p, frame), attributes_of(t, s)}); });
   return out;
 }
 

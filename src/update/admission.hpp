@@ -22,7 +22,8 @@ struct Admission {
   Box box;                   // Box(p_t), anchor frame
   std::optional<Box> previous;  // set under ShiftInOnly once a previous box exists
 
-  /// Calls take(stored point) for each admitted scan point; counts the refused ones in `stats`.
+  /// Calls take(stored coordinates, scan index) for each admitted scan point; counts the refused
+  /// ones in `stats`.
   ///
   /// Most points of a frame are decided by a float test in the ego frame (rotation only), which
   /// is exact for points farther than kMargin from every face of both boxes; the rest take the
@@ -55,7 +56,7 @@ struct Admission {
         ++stats.skipped_by_policy;
         continue;
       }
-      take(p);
+      take(p, i);
     }
   }
 

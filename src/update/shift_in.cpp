@@ -39,17 +39,26 @@ void reinsert(Tree& tree, std::vector<StoredPoint>& points, UpdateStats& stats) 
 }
 
 void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats) {
-  const std::uint32_t stamp = tree.points().keeps_stamps() ? motion.frame : 0;
+  const Columns& kept = tree.points().columns();
+  const std::uint32_t stamp = kept.stamps ? motion.frame : 0;
   const bool capped = tree.config().density_cap.enabled();
+  const bool timed_age = tree.config().max_age_seconds > 0.0;
   stats.inserted = tree.insert_collected([&](std::vector<StoredPoint>& batch) {
-    admission(motion, tree.config().insert_policy).for_each(scan, stats, [&](const std::array<float, 3>& p) {
-      // in scan order: the first points to reach a full cell are the ones kept
-      if (capped && !tree.admit_by_density(p)) {
-        ++stats.skipped_by_density;
-        return;
-      }
-      batch.push_back({p, stamp});
-    });
+    admission(motion, tree.config().insert_policy)
+        .for_each(scan, stats, [&](const std::array<float, 3>& p, std::size_t i) {
+          const StoredPoint s{p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
+                              kept.times ? float(scan.times[i] - motion.clock.origin) : 0.0f};
+          if (timed_age && tree.age_key(s) < tree.age_cutoff()) {  // older than the limit already
+            ++stats.skipped_by_age;
+            return;
+          }
+          // in scan order: the first points to reach a full cell are the ones kept
+          if (capped && !tree.admit_by_density(p)) {
+            ++stats.skipped_by_density;
+            return;
+          }
+          batch.push_back(s);
+        });
   });
 }
 

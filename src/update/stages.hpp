@@ -17,16 +17,18 @@ namespace eco::detail {
 /// Every stage counts what it does in the frame's `stats`.
 ///
 /// 1. Ego-motion: the new pose, precision origin and ego box (AABBs stay in the world; only the
-///    query box moves). When the precision origin moved, every held point is re-expressed and
-///    handed back in `displaced` (once per ~2 km). Enters the motion into the tree.
+///    query box moves), and the clock after `scan`'s times. When the precision origin moved (once
+///    per ~2 km) or the time origin did (once per ~64 s, with attributes.time), every held point
+///    is re-expressed and handed back in `displaced`. Enters the motion into the tree.
 struct EgoMotion {
   Motion motion;
   std::vector<StoredPoint> displaced;
 };
-EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor, UpdateStats& stats);
-/// The same for a map that keeps its first precision origin for good (`moves_origin` false in
-/// next_motion): nothing is ever displaced.
-Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor);
+EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan,
+                             UpdateStats& stats);
+/// The same for a map that keeps its first precision and time origins for good (`moves_origin`
+/// false in next_motion): nothing is ever displaced.
+Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
 
 /// 2. Shift-out (R_out): drop subtrees whose bounds left motion.box, filter the leaves that
 ///    straddle it, and drop points past the age limit. Subtrees wholly inside are not visited.

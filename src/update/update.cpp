@@ -4,6 +4,7 @@
 
 #include <eco/ego_octree.hpp>
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -16,7 +17,16 @@ std::string describe(const Eigen::Isometry3d& pose) {
   return s.str();
 }
 
-void check_scan(const ScanView& scan) {
+/// A kept attribute must come with every non-empty scan.
+void require_attribute(const void* values, bool kept, const char* name, const char* field, std::size_t count) {
+  if (kept && count > 0 && values == nullptr) {
+    throw std::invalid_argument(std::string("eco::EgoOctree: scan.") + name + " is null but Config::" + field +
+                                " is on (a kept attribute must come with every point of the scan's " +
+                                std::to_string(count) + ")");
+  }
+}
+
+void check_scan(const ScanView& scan, const Config& config) {
   if (scan.count > 0 && scan.data == nullptr) {
     throw std::invalid_argument("eco::EgoOctree: scan.data is null but scan.count = " +
                                 std::to_string(scan.count));
@@ -24,6 +34,17 @@ void check_scan(const ScanView& scan) {
   if (scan.stride < 3) {
     throw std::invalid_argument("eco::EgoOctree: scan.stride = " + std::to_string(scan.stride) +
                                 " is below 3 floats per point");
+  }
+  require_attribute(scan.ids, config.attributes.ids, "ids", "attributes.ids", scan.count);
+  require_attribute(scan.intensities, config.attributes.intensity, "intensities", "attributes.intensity", scan.count);
+  require_attribute(scan.times, config.attributes.time, "times", "attributes.time", scan.count);
+  if (!config.attributes.time) return;
+  for (std::size_t i = 0; i < scan.count; ++i) {
+    if (!std::isfinite(scan.times[i]) || scan.times[i] < 0.0) {
+      std::ostringstream s;
+      s << "eco::EgoOctree: scan.times[" << i << "] = " << scan.times[i] << " s must be finite and >= 0";
+      throw std::invalid_argument(s.str());
+    }
   }
 }
 
@@ -58,7 +79,7 @@ void detail::check_pose(const Eigen::Isometry3d& pose, const char* name) {
 void detail::check_update_arguments(const Eigen::Isometry3d& pose, const char* name,
                                     const ScanView& scan, const Config& config) {
   check_pose(pose, name);
-  check_scan(scan);
+  check_scan(scan, config);
   check_density_grid(pose, config);
 }
 
@@ -71,7 +92,7 @@ UpdateStats detail::begin_update(const Config& config, const Eigen::Isometry3d& 
 
 UpdateStats detail::run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
   UpdateStats stats = begin_update(tree.config(), world_T_sensor, scan);
-  auto [motion, displaced] = advance_ego_motion(tree, world_T_sensor, stats);      // 1. pose, box: O(1)
+  auto [motion, displaced] = advance_ego_motion(tree, world_T_sensor, scan, stats); // 1. pose, box, clock
   prune_shift_out(tree, motion, stats);                                            // 2. R_out
   clear_free_space(tree, motion, scan, displaced, stats);                          //    seen through
   displaced = refine_overlap(tree, motion, std::move(displaced), stats);           // 3. R_over

@@ -90,7 +90,7 @@ TEST(ConfigFields, TheTableNamesEveryFieldOnceWithDocsRangesAndValidDefaults) {
     f.parse(c, f.default_text());
     EXPECT_EQ(f.get(c), f.get(Config{})) << f.name;
   }
-  EXPECT_EQ(names.size(), 17u);
+  EXPECT_EQ(names.size(), 21u);
   EXPECT_THROW((void)config_field("box_sid"), std::invalid_argument);
 }
 
@@ -101,6 +101,7 @@ TEST(ConfigFields, EverySurfaceTakesTheSameGoodValue) {
     Config base;
     if (f.name == "density_cap.cell_size") base.density_cap.max_points = 1;
     if (f.name == "density_cap.max_points") base.density_cap.cell_size = 0.5;
+    if (f.name == "max_age_seconds") base.attributes.time = true;
     Config by_table = base;
     f.parse(by_table, value);
     EXPECT_NO_THROW(by_table.validate());
@@ -185,6 +186,18 @@ TEST(ConfigFields, ConfigJsonRefusesUnknownKeysAndWrongTypesNamingTheFile) {
   // fields that do not fit together are refused as validate() refuses them
   const nlohmann::json j{{"box_side", 10.0}, {"density_cap", {{"cell_size", 20.0}, {"max_points", 1}}}};
   EXPECT_THROW((void)bench::config_from_json(j, "x/config.json"), io::Error);
+  for (const nlohmann::json& apart : {nlohmann::json{{"max_age_seconds", 5.0}},  // without attributes.time
+                                      nlohmann::json{{"max_age_seconds", 5.0},
+                                                     {"max_age_frames", 3},
+                                                     {"attributes", {{"time", true}}}}}) {
+    SCOPED_TRACE(apart.dump());
+    try {
+      (void)bench::config_from_json(apart, "x/config.json");
+      ADD_FAILURE() << "taken";
+    } catch (const io::Error& e) {
+      EXPECT_NE(std::string(e.what()).find("max_age_seconds"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -1,12 +1,14 @@
 // PointStore, the leaves' point blocks, against a vector per leaf: appends that grow a block
-// through its size classes, in-place retains that shrink it, drains and releases, with and without
-// stamps; released blocks are reused before the pools grow.
+// through its size classes, in-place retains that shrink it, drains and releases, for sets of
+// optional columns (stamps, ids, intensities, times); released blocks are reused before the pools
+// grow.
 
 #include "core/point_store.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
 #include <vector>
 
 namespace eco::detail {
@@ -21,7 +23,10 @@ std::vector<StoredPoint> contents(const PointStore& store, std::uint32_t link, s
 bool same(const std::vector<StoredPoint>& a, const std::vector<StoredPoint>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
-    if (a[i].p != b[i].p || a[i].stamp != b[i].stamp) return false;
+    if (a[i].p != b[i].p || a[i].stamp != b[i].stamp || a[i].id != b[i].id || a[i].intensity != b[i].intensity ||
+        a[i].time != b[i].time) {
+      return false;
+    }
   }
   return true;
 }
@@ -40,11 +45,14 @@ TEST(PointStore, SizeClassesGrowByAboutHalfAndTheSmallestFitIsChosen) {
   }
 }
 
-class PointStoreModel : public ::testing::TestWithParam<bool> {};
+/// The optional columns of bit set `mask`: stamps, ids, intensities, times.
+Columns columns_of(int mask) { return {(mask & 1) != 0, (mask & 2) != 0, (mask & 4) != 0, (mask & 8) != 0}; }
+
+class PointStoreModel : public ::testing::TestWithParam<int> {};
 
 TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndReleases) {
-  const bool stamps = GetParam();
-  PointStore store(stamps);
+  const Columns kept = columns_of(GetParam());
+  PointStore store(kept);
   constexpr int kLeaves = 64;
   std::vector<std::uint32_t> links(kLeaves, kNone);
   std::vector<std::vector<StoredPoint>> model(kLeaves);
@@ -59,10 +67,10 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndRelea
     switch (rng() % 8) {
       case 0: {  // retain: drop points below a random x
         const float cut = coord(rng);
-        const std::uint32_t kept = store.retain(link, count, [&](const StoredPoint& s) { return s.p[0] >= cut; });
+        const std::uint32_t left = store.retain(link, count, [&](const StoredPoint& s) { return s.p[0] >= cut; });
         std::erase_if(expected, [&](const StoredPoint& s) { return s.p[0] < cut; });
-        ASSERT_EQ(kept, expected.size());
-        ASSERT_EQ(link == kNone, kept == 0);
+        ASSERT_EQ(left, expected.size());
+        ASSERT_EQ(link == kNone, left == 0);
         break;
       }
       case 1: {
@@ -81,7 +89,11 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndRelea
       default: {  // append a range, now and then a long one (large classes)
         const std::size_t m = rng() % 10 == 0 ? rng() % 3000 : 1 + rng() % 20;
         std::vector<StoredPoint> batch(m);
-        for (StoredPoint& s : batch) s = {{coord(rng), coord(rng), coord(rng)}, stamps ? next_stamp++ : 0u};
+        for (StoredPoint& s : batch) {  // a column not kept reads back as zero
+          s = {{coord(rng), coord(rng), coord(rng)}, kept.stamps ? next_stamp : 0u, kept.ids ? next_stamp * 7u : 0u,
+               kept.intensities ? coord(rng) : 0.0f, kept.times ? coord(rng) * 1e3f : 0.0f};
+          ++next_stamp;
+        }
         store.append(link, count, batch.data(), batch.data() + batch.size());
         expected.insert(expected.end(), batch.begin(), batch.end());
         break;
@@ -89,15 +101,34 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndRelea
     }
     ASSERT_TRUE(same(contents(store, link, std::uint32_t(expected.size())), expected)) << "step " << step;
     const PointSpan span = store.span(link, std::uint32_t(expected.size()));
-    ASSERT_EQ(span.stamps != nullptr, stamps && link != kNone);
+    const bool linked = link != kNone;
+    ASSERT_EQ(span.stamps != nullptr, kept.stamps && linked);
+    ASSERT_EQ(span.ids != nullptr, kept.ids && linked);
+    ASSERT_EQ(span.intensities != nullptr, kept.intensities && linked);
+    ASSERT_EQ(span.times != nullptr, kept.times && linked);
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Stamps, PointStoreModel, ::testing::Bool(),
-                         [](const ::testing::TestParamInfo<bool>& p) { return p.param ? "WithStamps" : "NoStamps"; });
+INSTANTIATE_TEST_SUITE_P(Columns, PointStoreModel, ::testing::Values(0, 1, 6, 8, 14, 15),
+                         [](const ::testing::TestParamInfo<int>& p) { return "Mask" + std::to_string(p.param); });
+
+TEST(PointStore, EachKeptColumnCostsFourBytesAPoint) {
+  std::vector<StoredPoint> batch(4096);
+  std::size_t previous = 0;
+  for (int columns = 0; columns <= 4; ++columns) {
+    PointStore store(columns_of((1 << columns) - 1));
+    std::uint32_t link = kNone;
+    store.append(link, 0, batch.data(), batch.data() + batch.size());
+    const std::size_t bytes = store.bytes();
+    if (columns > 0) {
+      EXPECT_NEAR(double(bytes - previous) / double(batch.size()), 4.0, 0.1) << columns;
+    }
+    previous = bytes;
+  }
+}
 
 TEST(PointStore, ReleasedBlocksAreReusedBeforeThePoolsGrow) {
-  PointStore store(true);
+  PointStore store(Columns{true, true, true, true});
   std::vector<StoredPoint> batch(50);
   std::vector<std::uint32_t> links(100, kNone);
   for (std::uint32_t& link : links) store.append(link, 0, batch.data(), batch.data() + batch.size());

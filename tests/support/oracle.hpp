@@ -27,13 +27,21 @@ enum class Memory {
   Nothing,     ///< a map rebuilt from the current scan alone (scan_only)
 };
 
+/// The per-point attributes of a test scan (each empty or one per point).
+struct ScanAttributes {
+  std::vector<std::uint32_t> ids;
+  std::vector<float> intensities;
+  std::vector<double> times;
+};
+
 class Oracle {
  public:
   explicit Oracle(const Config& config, Memory memory = Memory::TheBox) : cfg_(config), memory_(memory) {}
 
-  /// Mirrors one update. `origin` is the precision origin the tree reports after the update.
+  /// Mirrors one update. `origin` and `time_origin` are the precision and time origins the tree
+  /// reports after the update; `attributes` those of the scan.
   void update(const Eigen::Isometry3d& pose, const std::vector<Eigen::Vector3f>& scan,
-              const Eigen::Vector3d& origin) {
+              const Eigen::Vector3d& origin, const ScanAttributes& attributes = {}, double time_origin = 0.0) {
     ++frame_;
     if (origin != origin_) {  // re-express held points against the new origin
       const Eigen::Vector3d shift = origin_ - origin;
@@ -42,13 +50,24 @@ class Oracle {
       }
       origin_ = origin;
     }
+    const bool timed = cfg_.attributes.time;
+    if (timed) {
+      for (const double t : attributes.times) latest_ = std::max(latest_, t);
+      for (Held& h : held_) h.time = float(double(h.time) + (time_origin_ - time_origin));
+      time_origin_ = time_origin;
+    }
+    // the age limit in seconds: stored offset f is aged when f < (latest - max age) - time origin
+    const double time_cutoff = cfg_.max_age_seconds > 0.0 ? latest_ - cfg_.max_age_seconds - time_origin_
+                                                          : -std::numeric_limits<double>::infinity();
     const bool had_box = frame_ > 1;
     const Eigen::Vector3d previous = position_;
     position_ = pose.translation();
     const std::uint32_t age = cfg_.max_age_frames;
     const std::uint32_t cutoff = age > 0 && frame_ > age ? frame_ - age : 0;
     if (memory_ == Memory::TheBox) {
-      std::erase_if(held_, [&](const Held& h) { return !in_box(position_, h.p) || h.stamp < cutoff; });
+      std::erase_if(held_, [&](const Held& h) {
+        return !in_box(position_, h.p) || h.stamp < cutoff || double(h.time) < time_cutoff;
+      });
     } else if (memory_ == Memory::Nothing) {
       held_.clear();
     }
@@ -56,7 +75,8 @@ class Oracle {
 
     const Eigen::Matrix3d r = pose.linear();
     const Eigen::Vector3d t = pose.translation();
-    for (const Eigen::Vector3f& s : scan) {
+    for (std::size_t i = 0; i < scan.size(); ++i) {
+      const Eigen::Vector3f& s = scan[i];
       if (!s.allFinite()) continue;
       const Eigen::Vector3d w = r * s.cast<double>() + t;
       const std::array<float, 3> f{float(w[0] - origin_[0]), float(w[1] - origin_[1]),
@@ -66,8 +86,11 @@ class Oracle {
           in_box(previous, f)) {
         continue;
       }
+      const float time = timed ? float(attributes.times[i] - time_origin_) : 0.0f;
+      if (double(time) < time_cutoff) continue;  // older than the limit already
       if (cfg_.density_cap.enabled() && density_count(f) >= cfg_.density_cap.max_points) continue;
-      held_.push_back({f, age > 0 ? frame_ : 0});
+      held_.push_back({f, age > 0 ? frame_ : 0, cfg_.attributes.ids ? attributes.ids[i] : 0u,
+                       cfg_.attributes.intensity ? attributes.intensities[i] : 0.0f, time});
     }
   }
 
@@ -77,6 +100,25 @@ class Oracle {
     for (const Held& h : held_) out.push_back(world(h.p));
     sort_points(out);
     return out;
+  }
+
+  /// Held points in world coordinates with their attributes (times as the tree returns them),
+  /// sorted by point, then id.
+  [[nodiscard]] std::vector<HeldPoint> points_with_attributes() const {
+    std::vector<HeldPoint> out;
+    for (const Held& h : held_) {
+      out.push_back({world(h.p), {h.id, h.intensity, cfg_.attributes.time ? time_origin_ + double(h.time) : 0.0}});
+    }
+    sort_held(out);
+    return out;
+  }
+  static void sort_held(std::vector<HeldPoint>& v) {
+    std::sort(v.begin(), v.end(), [](const HeldPoint& a, const HeldPoint& b) {
+      if (a.point != b.point) {
+        return std::lexicographical_compare(a.point.data(), a.point.data() + 3, b.point.data(), b.point.data() + 3);
+      }
+      return a.attributes.id < b.attributes.id;
+    });
   }
 
   /// The k smallest squared distances from `query` (world), ascending.
@@ -142,6 +184,9 @@ class Oracle {
   struct Held {
     std::array<float, 3> p;
     std::uint32_t stamp;
+    std::uint32_t id;
+    float intensity;
+    float time;  // seconds from time_origin_
   };
 
   /// Free-space clearing as include/eco/config.hpp words it, ray by ray: a held point goes when
@@ -153,7 +198,8 @@ class Oracle {
       double range;
     };
     std::vector<Ray> rays;
-    for (const Eigen::Vector3f& s : scan) {
+    for (std::size_t i = 0; i < scan.size(); ++i) {
+      const Eigen::Vector3f& s = scan[i];
       if (!s.allFinite()) continue;
       double range = 0.0;
       int row = 0, column = 0;
@@ -239,6 +285,8 @@ class Oracle {
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
   std::uint32_t frame_ = 0;
+  double latest_ = -std::numeric_limits<double>::infinity();  // the latest time taken in
+  double time_origin_ = 0.0;
 };
 
 }  // namespace eco::test
