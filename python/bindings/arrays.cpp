@@ -1,6 +1,9 @@
 #include "arrays.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
 #include <sstream>
 #include <string>
 
@@ -104,6 +107,39 @@ ScanView Rows3::scan(std::vector<float>& storage) const {
   storage.assign(p, p + 3 * count_);
   return {storage.data(), count_, 3};
 }
+
+template <class T>
+py::array_t<T> column_arg(py::handle object, const char* name, std::size_t count) {
+  if (object.is_none()) return py::array_t<T>(0);
+  const bool listlike = py::isinstance<py::list>(object) || py::isinstance<py::tuple>(object);
+  const py::array a = listlike ? py::array(py::module_::import("numpy").attr("asarray")(object)) : as_array(object, name);
+  require_real(a, name);
+  if constexpr (std::is_integral_v<T>) {
+    const char kind = a.dtype().kind();
+    if (kind != 'i' && kind != 'u') {
+      throw py::type_error(std::string(name) + " must hold integers, got dtype " +
+                           std::string(py::str(py::handle(a.dtype()))));
+    }
+  }
+  if (a.ndim() != 1 || std::size_t(a.shape(0)) != count) {
+    throw py::value_error(std::string(name) + " must have one value per point, shape (" + std::to_string(count) +
+                          ",), got " + shape_of(a));
+  }
+  if constexpr (std::is_integral_v<T>) {
+    if (count > 0) {
+      const py::int_ least(a.attr("min")()), most(a.attr("max")());
+      if (least < py::int_(0) || most > py::int_(std::numeric_limits<T>::max())) {
+        throw py::value_error(std::string(name) + " must lie in [0, " + std::to_string(std::numeric_limits<T>::max()) +
+                              "], got values from " + std::string(py::str(py::handle(least))) + " to " + std::string(py::str(py::handle(most))));
+      }
+    }
+  }
+  return py::array_t<T, py::array::c_style | py::array::forcecast>(a);
+}
+
+template py::array_t<std::uint32_t> column_arg<std::uint32_t>(py::handle, const char*, std::size_t);
+template py::array_t<float> column_arg<float>(py::handle, const char*, std::size_t);
+template py::array_t<double> column_arg<double>(py::handle, const char*, std::size_t);
 
 Eigen::Vector3d vector3_arg(py::handle object, const char* name) {
   const py::array_t<double> a = small_array(object, name);

@@ -40,6 +40,13 @@ class Rows3 {
   bool float32_ = false;
 };
 
+/// One value per point, for a scan's per-point attributes: None (an empty array) or a 1-D
+/// array-like of `count` values converted to T (float32 intensities, float64 times: any real
+/// dtype; uint32 ids: integer dtypes only, each value in [0, 2^32)). TypeError for the wrong
+/// kind or dtype, ValueError for the wrong length or an id out of range, naming `name`.
+template <class T>
+[[nodiscard]] py::array_t<T> column_arg(py::handle object, const char* name, std::size_t count);
+
 /// A finite 3-vector: a (3,) array or a sequence of three numbers.
 [[nodiscard]] Eigen::Vector3d vector3_arg(py::handle object, const char* name);
 /// A rigid transform: a (4, 4) array whose last row is [0, 0, 0, 1], or a (3, 4) one (KITTI's).

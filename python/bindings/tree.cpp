@@ -11,6 +11,7 @@
 #include <limits>
 #include <mutex>
 #include <shared_mutex>
+#include <span>
 #include <stdexcept>
 #include <thread>
 
@@ -45,16 +46,32 @@ auto read() {
   };
 }
 
+/// A scan's per-point attributes as update() takes them (None where not given).
+struct AttributeArgs {
+  py::object ids, intensities, times;
+};
+
 /// The C++ update names its pose argument world_T_sensor; say which Python argument it was.
 template <class Work>
 UpdateStats update_with(SharedTree& self, const char* pose_name, const Eigen::Isometry3d& pose,
-                        const py::object& points, Work&& work) {
+                        const py::object& points, const AttributeArgs& attributes, Work&& work) {
   const Rows3 rows(points, "points", /*allow_single=*/false);
+  const auto ids = column_arg<std::uint32_t>(attributes.ids, "ids", rows.size());
+  const auto intensities = column_arg<float>(attributes.intensities, "intensities", rows.size());
+  const auto times = column_arg<double>(attributes.times, "times", rows.size());
   std::vector<float> converted;
+  ScanView scan = rows.scan(converted);
+  scan.ids = attributes.ids.is_none() ? nullptr : ids.data();
+  scan.intensities = attributes.intensities.is_none() ? nullptr : intensities.data();
+  scan.times = attributes.times.is_none() ? nullptr : times.data();
   try {
-    return writing(self, [&](EgoOctree& tree) { return work(tree, pose, rows.scan(converted)); });
+    return writing(self, [&](EgoOctree& tree) { return work(tree, pose, scan); });
   } catch (const std::invalid_argument& e) {
-    throw py::value_error(std::string(pose_name) + " rejected (tree unchanged): " + e.what());
+    const std::string what = e.what();
+    // name the Python argument: the C++ message names the pose argument or the scan's array
+    const bool about_scan = what.find("scan.") != std::string::npos;
+    throw py::value_error((about_scan ? std::string("scan") : std::string(pose_name)) +
+                          " rejected (tree unchanged): " + what);
   }
 }
 
@@ -109,13 +126,44 @@ py::tuple neighbors_arrays(const std::vector<Neighbor>& found) {
   return py::make_tuple(points, sq_dists);
 }
 
+/// Raises ValueError unless the tree keeps ids (what return_ids=True asks for).
+void require_ids(const SharedTree& self) {
+  if (!self.tree.config().attributes.ids) {
+    throw py::value_error("return_ids=True needs ids kept: config.attributes.ids is off");
+  }
+}
+
+/// knn(..., return_ids=True): (sq_dists, ids), SciPy's (dists, idx) with squared distances.
+py::tuple knn_ids(const SharedTree& self, const Rows3& q, std::size_t k, Frame frame, unsigned workers) {
+  require_ids(self);
+  const std::size_t m = q.size();
+  std::vector<double> sq_dists;
+  std::vector<std::uint32_t> ids;
+  const std::size_t columns = reading(self, [&](const EgoOctree& tree) {
+    const std::size_t kept = std::min(k, tree.size());
+    sq_dists.resize(m * kept);
+    ids.resize(m * kept);
+    in_slices(m, workers, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        tree.knn(q.row(i), std::span(ids).subspan(i * kept, kept), std::span(sq_dists).subspan(i * kept, kept),
+                 frame);
+      }
+    });
+    return kept;
+  });
+  using Shape = std::vector<std::size_t>;
+  const Shape shape = q.single() ? Shape{columns} : Shape{m, columns};
+  return py::make_tuple(shaped_array(std::move(sq_dists), shape), shaped_array(std::move(ids), shape));
+}
+
 py::tuple knn(const SharedTree& self, const py::object& queries, const py::object& k_value,
-              const py::object& frame_value, const py::object& workers_value) {
+              const py::object& frame_value, const py::object& workers_value, bool return_ids) {
   const Rows3 q(queries, "queries", /*allow_single=*/true);
   q.require_finite();
   const std::size_t k = k_arg(k_value);
   const Frame frame = enum_arg<Frame>(frame_value, "frame");
   const unsigned workers = workers_arg(workers_value);
+  if (return_ids) return knn_ids(self, q, k, frame, workers);
   const std::size_t m = q.size();
   // k is clamped to the points held, so a huge k costs no more than the tree's size.
   std::vector<double> points, sq_dists;
@@ -140,13 +188,26 @@ py::tuple knn(const SharedTree& self, const py::object& queries, const py::objec
                         shaped_array(std::move(sq_dists), q.single() ? Shape{columns} : Shape{m, columns}));
 }
 
+/// radius(..., return_ids=True): (sq_dists, ids) of one query.
+py::tuple distances_and_ids(const std::vector<Neighbor>& found) {
+  std::vector<double> sq_dists;
+  std::vector<std::uint32_t> ids;
+  for (const Neighbor& n : found) {
+    sq_dists.push_back(n.sq_dist);
+    ids.push_back(n.attributes.id);
+  }
+  return py::make_tuple(values_array(std::move(sq_dists)), values_array(std::move(ids)));
+}
+
 py::object radius(const SharedTree& self, const py::object& queries, const py::object& radius_value,
-                  const py::object& frame_value, const py::object& workers_value) {
+                  const py::object& frame_value, const py::object& workers_value, bool return_ids) {
   const Rows3 q(queries, "queries", /*allow_single=*/true);
   q.require_finite();
   const double r = number_arg(radius_value, "radius");
   const Frame frame = enum_arg<Frame>(frame_value, "frame");
   const unsigned workers = workers_arg(workers_value);
+  if (return_ids) require_ids(self);
+  const auto as_arrays = return_ids ? &distances_and_ids : &neighbors_arrays;
   const auto found = reading(self, [&](const EgoOctree& tree) {
     std::vector<std::vector<Neighbor>> out(q.size());
     in_slices(q.size(), workers, [&](std::size_t begin, std::size_t end) {
@@ -154,10 +215,31 @@ py::object radius(const SharedTree& self, const py::object& queries, const py::o
     });
     return out;
   });
-  if (q.single()) return neighbors_arrays(found.front());
+  if (q.single()) return as_arrays(found.front());
   py::list out;
-  for (const auto& one : found) out.append(neighbors_arrays(one));
+  for (const auto& one : found) out.append(as_arrays(one));
   return out;
+}
+
+/// (points, attributes) of held points: an (n, 3) array and a dict of the kept attributes'
+/// (n,) arrays: "ids" uint32, "intensities" float32, "times" float64.
+py::tuple with_attributes(const KeptAttributes& kept, const std::vector<HeldPoint>& held) {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::uint32_t> ids;
+  std::vector<float> intensities;
+  std::vector<double> times;
+  points.reserve(held.size());
+  for (const HeldPoint& h : held) {
+    points.push_back(h.point);
+    if (kept.ids) ids.push_back(h.attributes.id);
+    if (kept.intensity) intensities.push_back(h.attributes.intensity);
+    if (kept.time) times.push_back(h.attributes.time);
+  }
+  py::dict attributes;
+  if (kept.ids) attributes["ids"] = values_array(std::move(ids));
+  if (kept.intensity) attributes["intensities"] = values_array(std::move(intensities));
+  if (kept.time) attributes["times"] = values_array(std::move(times));
+  return py::make_tuple(rows_array(std::move(points)), attributes);
 }
 
 py::array_t<std::int64_t> keys_array(const std::vector<VoxelKey>& keys) {
@@ -199,59 +281,78 @@ void bind_tree(py::module_& m) {
            "Creates an empty tree from a Config (or a dict of its fields) or keyword fields.")
       .def(
           "update",
-          [](SharedTree& self, const py::object& pose, const py::object& points) {
-            return update_with(self, "pose", pose_arg(pose, "pose"), points,
+          [](SharedTree& self, const py::object& pose, const py::object& points, const py::object& ids,
+             const py::object& intensities, const py::object& times) {
+            return update_with(self, "pose", pose_arg(pose, "pose"), points, {ids, intensities, times},
                                [](EgoOctree& t, const Eigen::Isometry3d& p, ScanView s) {
                                  return t.update(p, s);
                                });
           },
-          py::arg("pose"), py::arg("points"),
+          py::arg("pose"), py::arg("points"), py::kw_only(), py::arg("ids") = py::none(),
+          py::arg("intensities") = py::none(), py::arg("times") = py::none(),
           R"(Advances to the sensor pose and takes in a scan.
 
 pose: 4x4 (or 3x4) world_T_sensor, mapping sensor-frame points to the world.
 points: (N, 3) array-like, sensor frame; a C-contiguous float32 array is read in place, anything
     else converted. Coordinates are rounded to float32 (ECO stores float offsets). NaN/inf rows are skipped and counted, not raised on.
-Returns the UpdateStats of this frame. A non-finite pose or a rotation that is not orthonormal
-raises ValueError and leaves the tree unchanged.)")
+ids, intensities, times: optional per-point attributes, (N,) each: uint32 ids (any integer dtype,
+    values in [0, 2^32)), float32 intensities, float64 times in seconds (finite, >= 0). The tree
+    stores those config.attributes keeps (a kept one must be given) and ignores the others.
+Returns the UpdateStats of this frame. A non-finite pose or a rotation that is not orthonormal,
+an attribute of the wrong length or dtype, or a negative or non-finite time raises (ValueError or
+TypeError naming the argument) and leaves the tree unchanged.)")
       .def(
           "update_relative",
-          [](SharedTree& self, const py::object& motion, const py::object& points) {
-            return update_with(self, "motion", pose_arg(motion, "motion"), points,
+          [](SharedTree& self, const py::object& motion, const py::object& points, const py::object& ids,
+             const py::object& intensities, const py::object& times) {
+            return update_with(self, "motion", pose_arg(motion, "motion"), points, {ids, intensities, times},
                                [](EgoOctree& t, const Eigen::Isometry3d& p, ScanView s) {
                                  return t.update_relative(p, s);
                                });
           },
-          py::arg("motion"), py::arg("points"),
+          py::arg("motion"), py::arg("points"), py::kw_only(), py::arg("ids") = py::none(),
+          py::arg("intensities") = py::none(), py::arg("times") = py::none(),
           R"(update() with the relative motion previous_T_current (4x4 or 3x4): the new sensor
-pose expressed in the previous sensor frame. The first frame starts from the identity pose.)")
+pose expressed in the previous sensor frame. The first frame starts from the identity pose.
+ids, intensities, times: as for update().)")
       .def("knn", &knn, py::arg("queries"), py::arg("k"), py::arg("frame") = Frame::World,
-           py::arg("workers") = 1,
+           py::arg("workers") = 1, py::kw_only(), py::arg("return_ids") = false,
            R"(The k nearest held points to each query, nearest first, exact.
 
 queries: (M, 3) float32/float64 array, or one (3,) point.
 Returns (points, sq_dists): (M, n, 3) and (M, n) float64 arrays ((n, 3) and (n,) for one
 point), n = min(k, len(tree)): k is clamped to the points held (SciPy pads with inf instead).
 frame: Frame.World (default) or Frame.Ego (world axes, origin at the sensor), or its name.
-workers: threads sharing the batch (default 1; -1: one per core). Answers do not depend on it.)")
+workers: threads sharing the batch (default 1; -1: one per core). Answers do not depend on it.
+return_ids: return (sq_dists, ids) instead, ids the uint32 ids given to update() (needs
+    config.attributes.ids), in the shapes of sq_dists: scipy.spatial.cKDTree.query's (dists, idx)
+    with squared distances and the caller's ids in place of row indices.)")
       .def("radius", &radius, py::arg("queries"), py::arg("radius"),
-           py::arg("frame") = Frame::World, py::arg("workers") = 1,
+           py::arg("frame") = Frame::World, py::arg("workers") = 1, py::kw_only(), py::arg("return_ids") = false,
            R"(Held points within `radius` metres (closed ball) of each query, nearest first.
 
 For one (3,) query returns (points (n, 3), sq_dists (n,)); for (M, 3) queries, a list of M
-such pairs. workers: as for knn().)")
+such pairs. workers: as for knn(). return_ids: (sq_dists, ids) pairs instead, as for knn().)")
       .def(
           "box",
           [](const SharedTree& self, const py::object& lo_value, const py::object& hi_value,
-             const py::object& frame_value) {
+             const py::object& frame_value, bool attributes) -> py::object {
             const Eigen::Vector3d lo = vector3_arg(lo_value, "lo");
             const Eigen::Vector3d hi = vector3_arg(hi_value, "hi");
             const Frame frame = enum_arg<Frame>(frame_value, "frame");
+            if (attributes) {
+              return with_attributes(self.tree.config().attributes, reading(self, [&](const EgoOctree& t) {
+                                       return t.box_with_attributes(lo, hi, frame);
+                                     }));
+            }
             return rows_array(
                 reading(self, [&](const EgoOctree& t) { return t.box(lo, hi, frame); }));
           },
-          py::arg("lo"), py::arg("hi"), py::arg("frame") = Frame::World,
+          py::arg("lo"), py::arg("hi"), py::arg("frame") = Frame::World, py::kw_only(),
+          py::arg("attributes") = false,
           "Held points inside the closed box [lo, hi] (3-vectors), as an (n, 3) array in no "
-          "particular order.")
+          "particular order. attributes=True: (points, attributes), attributes a dict of the kept "
+          "ones' (n,) arrays, in the points' order: 'ids' uint32, 'intensities' float32, 'times' float64.")
       .def(
           "voxelize",
           [](const SharedTree& self, const py::object& resolution, const py::object& frame_value) {
@@ -275,8 +376,15 @@ such pairs. workers: as for knn().)")
           "resolution is config.voxel_size * 2^i (then nodes are visited, not points).")
       .def(
           "points",
-          [](const SharedTree& self) { return rows_array(read<&EgoOctree::points>()(self)); },
-          "Every held point, world frame, as an (N, 3) float64 array in no particular order.")
+          [](const SharedTree& self, bool attributes) -> py::object {
+            if (attributes) {
+              return with_attributes(self.tree.config().attributes, read<&EgoOctree::points_with_attributes>()(self));
+            }
+            return rows_array(read<&EgoOctree::points>()(self));
+          },
+          py::kw_only(), py::arg("attributes") = false,
+          "Every held point, world frame, as an (N, 3) float64 array in no particular order. "
+          "attributes=True: (points, attributes) as box() gives them.")
       .def("stats", read<&EgoOctree::stats>(), "What the tree holds now (a Stats; O(nodes)).")
       .def("check_invariants", read<&EgoOctree::check_invariants>(),
            "Checks every structural invariant; returns '' when all hold, else the first violation.")
@@ -306,6 +414,9 @@ such pairs. workers: as for knn().)")
             return vector_array(read<&EgoOctree::precision_origin>()(self));
           },
           "The world point that stored float coordinates are offsets from (a multiple of 1024 m).")
+      .def_property_readonly("time_origin", read<&EgoOctree::time_origin>(),
+                             "The time [s] stored times are offsets from (config.attributes.time; a multiple "
+                             "of 64 s within 128 s of the latest time taken in; 0 before any).")
       .def_property_readonly("frame_count", read<&EgoOctree::frame_count>(),
                              "Updates taken so far.")
       .def("__repr__", [](const SharedTree& self) {
