@@ -24,6 +24,7 @@ WorkloadFrame StaticWorkload::frame(std::size_t index) const {
   WorkloadFrame frame;
   frame.index = index;
   frame.world_T_sensor = poses_[index];
+  frame.time = double(index) / 10.0;
   const Eigen::Vector3d centre = poses_[index].translation();
   const Eigen::Vector3d half = Eigen::Vector3d::Constant(box_side_ / 2.0);
   const Eigen::Isometry3d sensor_T_world = poses_[index].inverse();

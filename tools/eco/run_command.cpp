@@ -69,9 +69,9 @@ class TrailReport {
     }
   }
 
-  /// Takes frame `t` in (the run's tree has taken it); returns its trail (moving points held more
+  /// Takes frame `t` in (the run's tree has taken it as `scan`); returns its trail (moving points held more
   /// than 5 frames after they were scanned).
-  std::size_t frame(std::size_t t, const workloads::WorkloadFrame& frame, const EgoOctree& tree) {
+  std::size_t frame(std::size_t t, const workloads::WorkloadFrame& frame, ScanView scan, const EgoOctree& tree) {
     meter_.add_scan(t, frame.world_T_sensor, frame.points, frame.labels);
     const std::vector<Eigen::Vector3d> held = tree.points();
     const bench::TrailMeter::Census on = meter_.census(held, t);
@@ -79,7 +79,7 @@ class TrailReport {
     trail_on_ += trail;
     if (keeping_) {
       const auto start = std::chrono::steady_clock::now();
-      keeping_->update(frame.world_T_sensor, frame.points);
+      keeping_->update(frame.world_T_sensor, scan);
       keeping_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       const std::vector<Eigen::Vector3d> kept = keeping_->points();
       const bench::TrailMeter::Census off = meter_.census(kept, t);
@@ -133,12 +133,13 @@ int run(const RunOptions& o) {
   double update_ms = 0.0;
   for (std::size_t t = 0; t < total; ++t) {
     const workloads::WorkloadFrame frame = scans->frame(t);
+    const workloads::AttributedScan attributed(frame, std::uint32_t(t << 20));  // read when the config keeps them
     const auto start = std::chrono::steady_clock::now();
-    const UpdateStats u = tree.update(frame.world_T_sensor, frame.points);
+    const UpdateStats u = tree.update(frame.world_T_sensor, attributed.view);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     update_ms += ms;
     if (!frame.labels.empty() && !trails) trails = std::make_unique<TrailReport>(config);
-    const std::string trail = trails ? std::to_string(trails->frame(t, frame, tree)) : "-";
+    const std::string trail = trails ? std::to_string(trails->frame(t, frame, attributed.view, tree)) : "-";
     const Stats s = tree.stats();
     std::printf("%6zu %8zu %8zu %8zu %8zu %9zu %8zu %6.2f %6.1f %9.3f %7s\n", t, u.scan_points, u.inserted, u.pruned,
                 u.cleared, s.points, s.nodes, s.mean_leaf_depth, s.points ? double(s.bytes) / double(s.points) : 0.0,

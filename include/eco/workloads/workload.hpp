@@ -1,7 +1,10 @@
 #pragma once
 /// @file workload.hpp
 /// A workload: frames of (sensor pose, points in the sensor frame), made on demand in any order,
-/// ready for EgoOctree::update(frame.world_T_sensor, frame.points).
+/// ready for EgoOctree::update(frame.world_T_sensor, frame.points) — or, for a tree that keeps
+/// per-point attributes, update(frame.world_T_sensor, AttributedScan(frame, first_id).view).
+
+#include <eco/types.hpp>
 
 #include <Eigen/Geometry>
 
@@ -17,6 +20,22 @@ struct WorkloadFrame {
   Eigen::Isometry3d world_T_sensor = Eigen::Isometry3d::Identity();
   std::vector<Eigen::Vector3f> points;  ///< sensor frame
   std::vector<std::uint32_t> labels;    ///< SemanticKITTI label per point; empty when the source has none
+  std::vector<float> intensities;       ///< intensity per point; empty when the source has none
+  double time = 0.0;  ///< [s] when the frame was taken: the source's time, else index / 10 Hz
+};
+
+/// A frame's points as a scan with per-point attributes, for a tree that keeps them: ids
+/// numbered from `first_id`, the source's intensities (zero when it has none) and every point at
+/// the frame's time. `view` reads `frame`'s points, which must outlive it.
+struct AttributedScan {
+  std::vector<std::uint32_t> ids;
+  std::vector<float> intensities;
+  std::vector<double> times;
+  ScanView view;
+
+  AttributedScan(const WorkloadFrame& frame, std::uint32_t first_id);
+  AttributedScan(const AttributedScan&) = delete;  // `view` points into the arrays
+  AttributedScan& operator=(const AttributedScan&) = delete;
 };
 
 class Workload {
