@@ -164,6 +164,16 @@ TEST(Baselines, UnknownNameAndUnsupportedConfigAreRejectedByName) {
       EXPECT_NE(std::string(e.what()).find("clearing.enabled = true"), std::string::npos) << e.what();
     }
   }
+  Config attributed;
+  attributed.attributes.ids = true;
+  for (const char* flat : {"nanoflann", "pcl_octree", "scan_pass"}) {
+    try {
+      (void)make_method(flat, attributed);
+      FAIL() << flat << ": no exception";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("attributes"), std::string::npos) << e.what();
+    }
+  }
   Config bad;
   bad.box_side = -1.0;
   for (const std::string& name : baselines::method_names()) {

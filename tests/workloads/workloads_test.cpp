@@ -159,12 +159,30 @@ TEST(Workloads, FromASimulatedSequenceIntoEco) {
 
   const DynamicWorkload dynamic{io::KittiSequence(dir.path())};
   ASSERT_EQ(dynamic.size(), 6u);
+  ASSERT_EQ(dynamic.sequence().times().size(), 6u);
   for (std::size_t f = 0; f < dynamic.size(); ++f) {  // the raw scans, as the reader gives them
     const WorkloadFrame frame = dynamic.frame(f);
     const io::KittiFrame read = dynamic.sequence().read(f);
     EXPECT_EQ(frame.points, read.cloud.points);
+    EXPECT_EQ(frame.intensities, read.cloud.intensity);
+    EXPECT_EQ(frame.time, dynamic.sequence().times()[f]);
     EXPECT_EQ(frame.world_T_sensor.matrix(), read.world_T_lidar.matrix());
+
+    // as a scan with attributes: ids from the first given, the intensities, the frame's time
+    const AttributedScan scan(frame, 1000u * std::uint32_t(f));
+    ASSERT_EQ(scan.view.count, frame.points.size());
+    ASSERT_EQ(scan.view.data, frame.points.front().data());
+    for (std::size_t i = 0; i < frame.points.size(); i += 97) {
+      EXPECT_EQ(scan.view.ids[i], 1000u * f + i);
+      EXPECT_EQ(scan.view.intensities[i], frame.intensities[i]);
+      EXPECT_EQ(scan.view.times[i], frame.time);
+    }
   }
+  WorkloadFrame bare = dynamic.frame(0);
+  bare.intensities.clear();  // a source without intensities: zeros
+  const AttributedScan zeros(bare, 0);
+  EXPECT_TRUE(std::all_of(zeros.intensities.begin(), zeros.intensities.end(), [](float v) { return v == 0.0f; }));
+  EXPECT_EQ(zeros.intensities.size(), bare.points.size());
 
   const auto map = std::make_shared<const StaticMap>(StaticMap::aggregate(dynamic, 0.1));
   const StaticWorkload stat(map, dynamic.sequence().poses());
