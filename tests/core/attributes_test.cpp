@@ -4,6 +4,7 @@
 // that keeps them in a flat list says.
 
 #include "support/compare.hpp"
+#include "support/rejected.hpp"
 #include "support/streams.hpp"
 
 #include <gtest/gtest.h>
@@ -187,17 +188,6 @@ INSTANTIATE_TEST_SUITE_P(Streams, AttributesOracle,
                                             ::testing::Bool(),
                                             ::testing::Values(Age::None, Age::Frames, Age::Seconds)),
                          param_name);
-
-/// Calls `call`, which must throw std::invalid_argument whose message holds every one of `words`.
-template <class Call>
-void expect_rejected(Call&& call, std::initializer_list<std::string> words) {
-  try {
-    call();
-    FAIL() << "no exception";
-  } catch (const std::invalid_argument& e) {
-    for (const std::string& w : words) EXPECT_NE(std::string(e.what()).find(w), std::string::npos) << e.what();
-  }
-}
 
 TEST(AttributesBadInput, MissingArraysAndBadTimesAreRejectedNamingThemAndTheTreeIsUnchanged) {
   Config cfg;

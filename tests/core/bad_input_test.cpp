@@ -2,6 +2,7 @@
 // rejected call. Non-finite scan points are skipped and counted, never thrown on.
 
 #include "support/compare.hpp"
+#include "support/rejected.hpp"
 #include "support/streams.hpp"
 
 #include <limits>
@@ -11,17 +12,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// Runs `call`, expects std::invalid_argument whose message contains every one of `words`.
-template <class Call>
-void expect_rejected(Call&& call, std::initializer_list<std::string> words) {
-  try {
-    call();
-    FAIL() << "no exception";
-  } catch (const std::invalid_argument& e) {
-    for (const std::string& w : words) EXPECT_NE(std::string(e.what()).find(w), std::string::npos) << e.what();
-  }
-}
 
 TEST(BadConfig, EachInvalidFieldIsRejectedByName) {
   auto with = [](auto edit) {
