@@ -125,6 +125,9 @@ class Tree {
   bool admit_by_density(const std::array<float, 3>& p) {
     return density_.add_below(density_key(p), cfg_.density_cap.max_points);
   }
+  /// Working memory for free-space clearing's range image (src/update/range_image.hpp), kept so
+  /// that no frame pays for fresh pages; counted in bytes().
+  std::vector<double>& range_image_buffer() { return range_image_buffer_; }
   /// Fills the start table (where insertion starts) from the current tree at `depth`.
   void rebuild_start_table(int depth);
 
@@ -230,6 +233,7 @@ class Tree {
     std::vector<StoredPoint> scan, points;
     std::vector<std::uint32_t> slot_of, group_start, group_end;
   } batch_buffers_;
+  std::vector<double> range_image_buffer_;
 };
 
 }  // namespace eco::detail

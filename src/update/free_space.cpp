@@ -16,7 +16,7 @@ class Clearer {
  public:
   Clearer(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats)
       : t_(tree),
-        image_(tree.config().sensor, scan),
+        image_(tree.config().sensor, scan, tree.range_image_buffer()),
         sensor_R_world_(motion.pose.linear().transpose()),
         sensor_from_anchor_(motion.anchor - motion.pose.translation()),
         margin_(tree.config().clearing.margin),
@@ -30,8 +30,21 @@ class Clearer {
     return nearest > max_range_ * (1.0 + 1e-9) + 1e-9 ? Verdict::KeepAll : Verdict::LookInside;
   }
   void drop(std::uint32_t) {}  // never judged DropAll
-  void filter_leaf(std::uint32_t id) {
-    t_.retain(id, [&](const StoredPoint& s) { return !cleared(s); });
+  /// Judges the leaf's points first, and rewrites the leaf only when the scan saw through some:
+  /// most leaves lose nothing.
+  bool filter_leaf(std::uint32_t id) {
+    const Node& n = t_.nodes()[id];
+    const PointSpan points = t_.points().span(n.link, n.count);
+    seen_through_.assign(points.size, 0);
+    bool any = false;
+    for (std::uint32_t i = 0; i < points.size; ++i) {
+      seen_through_[i] = cleared(points[i]) ? 1 : 0;
+      any = any || seen_through_[i];
+    }
+    if (!any) return false;
+    std::uint32_t i = 0;  // retain() asks in order
+    t_.retain(id, [&](const StoredPoint&) { return seen_through_[i++] == 0; });
+    return true;
   }
 
   /// Whether the scan sees through `s` (counted).
@@ -53,6 +66,7 @@ class Clearer {
   double margin_ = 0.0;
   double max_range_ = 0.0;
   UpdateStats& stats_;
+  std::vector<char> seen_through_;  // filter_leaf's verdicts, per point of the leaf
 };
 
 }  // namespace
@@ -66,7 +80,7 @@ void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vect
     tree.forget(s);
     return true;
   });
-  if (tree.root() != kNone && filter_subtree(tree, tree.root(), clearer)) {
+  if (tree.root() != kNone && filter_subtree(tree, tree.root(), clearer) == Filtered::Gone) {
     tree.place_root(tree.root_cell(), tree.lattice());
   }
 }

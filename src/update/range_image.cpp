@@ -4,9 +4,19 @@
 
 namespace eco::detail {
 
-RangeImage::RangeImage(const SensorModel& sensor, ScanView scan)
-    : sensor_(sensor), rows_(sensor.rows()), columns_(sensor.columns()) {
-  std::vector<double> nearest(std::size_t(rows_) * std::size_t(columns_), kNoReturn);
+RangeImage::RangeImage(const SensorModel& sensor, ScanView scan, std::vector<double>& storage)
+    : sensor_(sensor),
+      rows_(sensor.rows()),
+      columns_(sensor.columns()),
+      row_guard_(2.0 * kFastAtan2Error / sensor.vertical_resolution + 1e-9),
+      column_guard_(2.0 * kFastAtan2Error / sensor.horizontal_resolution + 1e-9),
+      per_row_(1.0 / sensor.vertical_resolution),
+      per_column_(1.0 / sensor.horizontal_resolution) {
+  const std::size_t pixels = std::size_t(rows_) * std::size_t(columns_);
+  storage.resize(2 * pixels);
+  const std::span<double> nearest(storage.data(), pixels);  // becomes the 3x3 minimum at the end
+  const std::span<double> across(storage.data() + pixels, pixels);
+  std::fill(nearest.begin(), nearest.end(), kNoReturn);
   for (std::size_t i = 0; i < scan.count; ++i) {
     const float* p = scan.data + i * scan.stride;
     const Eigen::Vector3d v(p[0], p[1], p[2]);
@@ -18,7 +28,6 @@ RangeImage::RangeImage(const SensorModel& sensor, ScanView scan)
     }
   }
   // The minimum over 3x3 neighbourhoods, separably: along each row (wrapping), then across rows.
-  std::vector<double> across(nearest.size());
   for (int r = 0; r < rows_; ++r) {
     for (int c = 0; c < columns_; ++c) {
       const int left = c == 0 ? columns_ - 1 : c - 1;
@@ -26,15 +35,15 @@ RangeImage::RangeImage(const SensorModel& sensor, ScanView scan)
       across[index(r, c)] = std::min({nearest[index(r, left)], nearest[index(r, c)], nearest[index(r, right)]});
     }
   }
-  around_ = std::move(nearest);
   for (int r = 0; r < rows_; ++r) {
     for (int c = 0; c < columns_; ++c) {
       double m = across[index(r, c)];
       if (r > 0) m = std::min(m, across[index(r - 1, c)]);
       if (r + 1 < rows_) m = std::min(m, across[index(r + 1, c)]);
-      around_[index(r, c)] = m;
+      nearest[index(r, c)] = m;
     }
   }
+  around_ = nearest;
 }
 
 }  // namespace eco::detail

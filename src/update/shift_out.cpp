@@ -17,7 +17,10 @@ class Pruner {
     return Verdict::LookInside;
   }
   void drop(std::uint32_t id) { t_.drop(id, stats_); }
-  void filter_leaf(std::uint32_t id) { t_.filter_leaf(id, box_, stats_); }
+  bool filter_leaf(std::uint32_t id) {
+    t_.filter_leaf(id, box_, stats_);
+    return true;  // judged LookInside: it straddles the box's walls or holds aged points
+  }
 
  private:
   Tree& t_;
@@ -31,7 +34,7 @@ class Pruner {
 void prune_shift_out(Tree& tree, const Motion& motion, UpdateStats& stats) {
   if (tree.root() == kNone) return;
   Pruner pruner(tree, motion.box, stats);
-  if (filter_subtree(tree, tree.root(), pruner)) {  // the whole tree left: start afresh
+  if (filter_subtree(tree, tree.root(), pruner) == Filtered::Gone) {  // the whole tree left: start afresh
     tree.place_root(tree.root_cell(), tree.lattice());
   }
 }

@@ -10,34 +10,43 @@ namespace eco::detail {
 
 enum class Verdict { KeepAll, DropAll, LookInside };
 
+/// What a filter did to a subtree.
+enum class Filtered { Unchanged, Changed, Gone };
+
 /// `filter` provides Verdict judge(const Node&), void drop(std::uint32_t id) (the subtree
-/// leaves the tree) and void filter_leaf(std::uint32_t id) (keeps some of the leaf's points).
-/// Returns true when the subtree at `id` is gone (released; the root never is).
+/// leaves the tree) and bool filter_leaf(std::uint32_t id) (keeps some of the leaf's points and
+/// refits it; false when it kept them all and left the leaf untouched). Only what changed is
+/// refitted; the root is never released (Gone: it holds nothing now).
 template <class Filter>
-bool filter_subtree(Tree& t, std::uint32_t id, Filter& filter) {
+Filtered filter_subtree(Tree& t, std::uint32_t id, Filter& filter) {
   const Node& n = t.nodes()[id];
-  if (n.count == 0) return false;
+  if (n.count == 0) return Filtered::Unchanged;
   const Verdict verdict = filter.judge(n);
-  if (verdict == Verdict::KeepAll) return false;
+  if (verdict == Verdict::KeepAll) return Filtered::Unchanged;
   if (verdict == Verdict::DropAll) {
     filter.drop(id);
-    return true;
+    return Filtered::Gone;
   }
   if (n.leaf) {
-    filter.filter_leaf(id);
+    if (!filter.filter_leaf(id)) return Filtered::Unchanged;
   } else {
+    bool changed = false;
     for (int o = 0; o < 8; ++o) {
       const std::uint32_t ch = t.nodes().child(id, o);
-      if (ch != kNone && filter_subtree(t, ch, filter)) t.unlink_child(id, o);
+      if (ch == kNone) continue;
+      const Filtered below = filter_subtree(t, ch, filter);
+      if (below == Filtered::Gone) t.unlink_child(id, o);
+      changed = changed || below != Filtered::Unchanged;
     }
+    if (!changed) return Filtered::Unchanged;
     t.refit(id);
     if (t.nodes()[id].count > 0 && t.should_collapse(id)) t.collapse(id);
   }
   if (t.nodes()[id].count == 0 && id != t.root()) {
     t.dissolve(id, nullptr);
-    return true;
+    return Filtered::Gone;
   }
-  return false;
+  return t.nodes()[id].count == 0 ? Filtered::Gone : Filtered::Changed;
 }
 
 }  // namespace eco::detail
