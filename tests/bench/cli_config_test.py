@@ -70,6 +70,23 @@ eco("bench", "--data", "sim", "--preset", "robot", "--methods", "eco", "--knn-qu
     "--voxel_size", "0.05", "--out", "V")
 check(load("V/config.json")["config"]["voxel_size"] == 0.05, "an explicit --voxel_size was overridden")
 
+# per-point attributes: the bench feeds ids, intensities and frame times to the tree methods; the
+# columns cost memory, and an age limit in seconds reads the times
+plain = ["bench", "--data", "sim", "--preset", "robot", "--methods", "eco,octree_base", "--knn-queries", "0",
+         "--frames", "4"]
+eco(*plain, "--out", "U")
+eco(*plain, "--attributes.ids", "true", "--attributes.intensity", "true", "--attributes.time", "true", "--out", "T")
+eco(*plain, "--attributes.time", "true", "--max_age_seconds", "0.15", "--out", "S")
+u, t, aged = (load(f"{d}/summary.json")["methods"] for d in ("U", "T", "S"))
+for method in ("eco", "octree_base"):
+    check(t[method]["points"] == u[method]["points"], f"{method}: attributes changed what is held")
+    check(t[method]["bytes_per_point"] > u[method]["bytes_per_point"] + 10, f"{method}: {t[method]} vs {u[method]}")
+    check(0 < aged[method]["points"] < u[method]["points"], f"{method}: the age limit in seconds dropped nothing")
+check(load("T/config.json")["config"]["attributes"] == {"ids": True, "intensity": True, "time": True}, "attributes")
+ran = eco("run", "--data", "sim", "--frames", "3", "--attributes.ids", "true", "--max_age_seconds", "1",
+          "--attributes.time", "true", "--out", "RA").stdout
+check("invariants: all hold" in ran, ran)
+
 # run takes the tree's config from a bench file, and writes its own
 eco("run", "--config", "A/config.json", "--data", "sim", "--frames", "2", "--out", "R")
 cr = load("R/config.json")
