@@ -27,7 +27,7 @@ inline Box ego_box(const Eigen::Vector3d& position, const Eigen::Vector3d& ancho
   return b;
 }
 
-/// The maps's clock, kept while Config::attributes.time is on: stored times are float offsets
+/// The map's clock, kept while Config::attributes.time is on: stored times are float offsets
 /// from `origin`, which follows the latest time in steps of 64 s (as the precision origin follows
 /// the sensor), so a recent time is stored to within 2^-24 * 128 s.
 struct Clock {
