@@ -102,6 +102,13 @@ class PointStore {
     return kept;
   }
 
+  /// Adds `shift` [s] to the times of the `count` points at `link` (rounded once more to float).
+  void shift_times(std::uint32_t link, std::uint32_t count, double shift) {
+    if (link == kNone || !columns_.times) return;
+    float* times = block(link).times;
+    for (std::uint32_t i = 0; i < count; ++i) times[i] = float(double(times[i]) + shift);
+  }
+
   /// Appends the `count` points at `link` to `out` and releases the block.
   void drain(std::uint32_t& link, std::uint32_t count, std::vector<StoredPoint>& out) {
     for_each(link, count, [&](const StoredPoint& s) { out.push_back(s); });

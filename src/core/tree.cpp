@@ -65,6 +65,23 @@ std::uint32_t Tree::compute_age_cutoff() const {
   return age > 0 && frame() > age ? frame() - age : 0;
 }
 
+void Tree::shift_times(double shift) {
+  const bool keyed = cfg_.max_age_seconds > 0.0;  // node age keys are read from the times
+  auto walk = [&](auto&& self, std::uint32_t id) -> void {
+    Node& n = nodes_[id];
+    if (n.leaf) {
+      points_.shift_times(n.link, n.count, shift);
+    } else {
+      for (int o = 0; o < 8; ++o) {
+        const std::uint32_t ch = nodes_.child(id, o);
+        if (ch != kNone) self(self, ch);
+      }
+    }
+    if (keyed) refit(id);
+  };
+  if (root_ != kNone) walk(walk, root_);
+}
+
 void Tree::recount_density(const std::vector<StoredPoint>& held) {
   density_.clear();
   if (!cfg_.density_cap.enabled()) return;

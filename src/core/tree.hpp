@@ -132,6 +132,9 @@ class Tree {
   void rebuild_start_table(int depth);
 
   // --- removal and repair -----------------------------------------------------------------------
+  /// Re-expresses every held time against a time origin moved by -`shift` [s] (old origin - new
+  /// origin), in place, and refits the nodes' age keys when they are read from the times.
+  void shift_times(double shift);
   /// Releases the subtree at `id` whose points leave the tree (counted as pruned).
   void drop(std::uint32_t id, UpdateStats& stats);
   /// Keeps the points of leaf `id` that keeps() keeps, and refits it.

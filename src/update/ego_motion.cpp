@@ -16,9 +16,9 @@ Eigen::Vector3d nearest_origin(const Eigen::Vector3d& position) {
   return (position / kOriginStep).array().round().matrix() * kOriginStep;
 }
 
-/// Takes every held point out of the tree, re-expressed against the new precision and time
-/// origins (rounded once more to float); points the rounding takes out of the box, or past the
-/// age limit, are dropped.
+/// Takes every held point out of the tree, re-expressed against the new precision origin (and
+/// time origin, when it moved too), rounded once more to float; points the rounding takes out of
+/// the box, or past the age limit, are dropped.
 std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion, UpdateStats& stats) {
   std::vector<StoredPoint> held;
   tree.take_points(held);
@@ -91,7 +91,11 @@ EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor
                              latest_time(scan, tree.config())),
                  {}};
   tree.set_motion(out.motion);  // the density keys of the re-expressed points need the new origin
-  if (out.motion.origin_shift || out.motion.clock.shift) out.displaced = rebase(tree, out.motion, stats);
+  if (out.motion.origin_shift) {
+    out.displaced = rebase(tree, out.motion, stats);
+  } else if (out.motion.clock.shift) {  // times alone: re-expressed in place, nothing moves
+    tree.shift_times(*out.motion.clock.shift);
+  }
   return out;
 }
 
