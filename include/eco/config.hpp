@@ -87,6 +87,8 @@ struct KeptAttributes {
   bool ids = false;        ///< a std::uint32_t per point
   bool intensity = false;  ///< a float per point
   bool time = false;       ///< seconds per point; needed by max_age_seconds
+
+  [[nodiscard]] bool any() const { return ids || intensity || time; }
 };
 
 /// Configuration of an EgoOctree.

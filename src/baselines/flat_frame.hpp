@@ -28,7 +28,7 @@ class FlatFrame {
     if (cfg_.clearing.enabled) {
       throw std::invalid_argument("the " + who + " baseline has no free-space clearing (clearing.enabled = true)");
     }
-    if (cfg_.attributes.ids || cfg_.attributes.intensity || cfg_.attributes.time) {
+    if (cfg_.attributes.any()) {
       throw std::invalid_argument("the " + who + " baseline keeps no per-point attributes (attributes.ids, "
                                   ".intensity or .time = true)");
     }

@@ -67,11 +67,10 @@ BenchRun run_bench(const BenchOptions& given, const Progress& progress) {
       FrameRecord r;
       r.frame = t;
       r.input_points = frame.points.size();
-      const KeptAttributes& kept = options.config.attributes;
       std::optional<workloads::AttributedScan> attributed;  // made before the clock starts
-      if (kept.ids || kept.intensity || kept.time) attributed.emplace(frame, std::uint32_t(t << 20));
+      const ScanView scan = workloads::scan_for(frame, options.config.attributes, attributed);
       auto start = Clock::now();
-      method.update(frame.world_T_sensor, attributed ? attributed->view : ScanView(frame.points));
+      method.update(frame.world_T_sensor, scan);
       r.update_ms = ms_since(start);
       if (method.indexed()) {  // scan_pass would scan every point per query: not timed
         start = Clock::now();

@@ -129,8 +129,8 @@ namespace detail {
 
 std::size_t knn_query(const Tree& t, const Eigen::Vector3d& query, std::span<Neighbor> out, Frame frame) {
   require_finite(query, "knn", "query");
-  const bool times = t.points().columns().times;
-  const bool with_attributes = t.points().columns().ids || t.points().columns().intensities || times;
+  const bool times = t.config().attributes.time;
+  const bool with_attributes = t.config().attributes.any();
   const std::size_t found =
       KnnSearch(t, to_anchor_frame(t, query, frame), NeighborResults(out, with_attributes)).run();
   for (Neighbor& n : out.first(found)) {

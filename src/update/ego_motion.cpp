@@ -16,23 +16,17 @@ Eigen::Vector3d nearest_origin(const Eigen::Vector3d& position) {
   return (position / kOriginStep).array().round().matrix() * kOriginStep;
 }
 
-/// Takes every held point out of the tree, re-expressed against the new precision origin (and
-/// time origin, when it moved too), rounded once more to float; points the rounding takes out of
-/// the box, or past the age limit, are dropped.
+/// Takes every held point out of the tree, re-expressed against the new precision origin (rounded
+/// once more to float); points the rounding takes out of the box, or past the age limit, are
+/// dropped.
 std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion, UpdateStats& stats) {
   std::vector<StoredPoint> held;
   tree.take_points(held);
-  if (motion.origin_shift) {
-    const Eigen::Vector3d shift = *motion.origin_shift;  // exact: multiples of kOriginStep
-    for (StoredPoint& s : held) s.p = rebased(s.p, shift);
-    stats.rebased = true;
-  }
-  if (motion.clock.shift) {
-    const double shift = *motion.clock.shift;  // exact: multiples of kClockStep
-    for (StoredPoint& s : held) s.time = float(double(s.time) + shift);
-  }
+  const Eigen::Vector3d shift = *motion.origin_shift;  // exact: multiples of kOriginStep
+  for (StoredPoint& s : held) s.p = rebased(s.p, shift);
   std::erase_if(held, [&](const StoredPoint& s) { return !tree.keeps(s, motion.box, stats); });
   tree.recount_density(held);  // every cell key moved with the origin
+  stats.rebased = true;
   stats.rebuilt_subtrees += 1;
   return held;
 }
@@ -91,11 +85,8 @@ EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor
                              latest_time(scan, tree.config())),
                  {}};
   tree.set_motion(out.motion);  // the density keys of the re-expressed points need the new origin
-  if (out.motion.origin_shift) {
-    out.displaced = rebase(tree, out.motion, stats);
-  } else if (out.motion.clock.shift) {  // times alone: re-expressed in place, nothing moves
-    tree.shift_times(*out.motion.clock.shift);
-  }
+  if (out.motion.clock.shift) tree.shift_times(*out.motion.clock.shift);  // in place, nothing moves
+  if (out.motion.origin_shift) out.displaced = rebase(tree, out.motion, stats);
   return out;
 }
 

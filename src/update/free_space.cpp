@@ -38,7 +38,7 @@ class Clearer {
     seen_through_.assign(points.size, 0);
     bool any = false;
     for (std::uint32_t i = 0; i < points.size; ++i) {
-      seen_through_[i] = cleared(points[i]) ? 1 : 0;
+      seen_through_[i] = cleared({points.x[i], points.y[i], points.z[i]}) ? 1 : 0;
       any = any || seen_through_[i];
     }
     if (!any) return false;
@@ -47,10 +47,10 @@ class Clearer {
     return true;
   }
 
-  /// Whether the scan sees through `s` (counted).
-  bool cleared(const StoredPoint& s) {
+  /// Whether the scan sees through the held point at stored coordinates `p` (counted).
+  bool cleared(const std::array<float, 3>& p) {
     const Eigen::Vector3d v =
-        sensor_R_world_ * (sensor_from_anchor_ + Eigen::Vector3d(double(s.p[0]), double(s.p[1]), double(s.p[2])));
+        sensor_R_world_ * (sensor_from_anchor_ + Eigen::Vector3d(double(p[0]), double(p[1]), double(p[2])));
     double range = 0.0;
     const std::optional<Pixel> at = image_.pixel_of(v, range);
     const bool seen_through = at && image_.returned_around(*at) && image_.nearest_around(*at) > range + margin_;
@@ -76,7 +76,7 @@ void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vect
   if (!tree.config().clearing.enabled) return;
   Clearer clearer(tree, motion, scan, stats);
   std::erase_if(displaced, [&](const StoredPoint& s) {
-    if (!clearer.cleared(s)) return false;
+    if (!clearer.cleared(s.p)) return false;
     tree.forget(s);
     return true;
   });

@@ -18,9 +18,9 @@ namespace eco::detail {
 ///
 /// 1. Ego-motion: the new pose, precision origin and ego box (AABBs stay in the world; only the
 ///    query box moves), and the clock after `scan`'s times. When the precision origin moved (once
-///    per ~2 km), every held point is re-expressed and handed back in `displaced`; when only the
-///    time origin did (once per ~64 s, with attributes.time), the held times are re-expressed in
-///    place. Enters the motion into the tree.
+///    per ~2 km), every held point is re-expressed and handed back in `displaced`; when the time
+///    origin did (once per ~64 s, with attributes.time), the held times are re-expressed in place.
+///    Enters the motion into the tree.
 struct EgoMotion {
   Motion motion;
   std::vector<StoredPoint> displaced;

@@ -15,4 +15,10 @@ AttributedScan::AttributedScan(const WorkloadFrame& frame, std::uint32_t first_i
   view.times = times.data();
 }
 
+ScanView scan_for(const WorkloadFrame& frame, const KeptAttributes& kept, std::optional<AttributedScan>& attributed) {
+  if (!kept.any()) return ScanView(frame.points);
+  attributed.emplace(frame, std::uint32_t(frame.index << 20));
+  return attributed->view;
+}
+
 }  // namespace eco::workloads

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace eco::cli {
 namespace {
@@ -133,13 +134,14 @@ int run(const RunOptions& o) {
   double update_ms = 0.0;
   for (std::size_t t = 0; t < total; ++t) {
     const workloads::WorkloadFrame frame = scans->frame(t);
-    const workloads::AttributedScan attributed(frame, std::uint32_t(t << 20));  // read when the config keeps them
+    std::optional<workloads::AttributedScan> attributed;
+    const ScanView scan = workloads::scan_for(frame, config.attributes, attributed);
     const auto start = std::chrono::steady_clock::now();
-    const UpdateStats u = tree.update(frame.world_T_sensor, attributed.view);
+    const UpdateStats u = tree.update(frame.world_T_sensor, scan);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     update_ms += ms;
     if (!frame.labels.empty() && !trails) trails = std::make_unique<TrailReport>(config);
-    const std::string trail = trails ? std::to_string(trails->frame(t, frame, attributed.view, tree)) : "-";
+    const std::string trail = trails ? std::to_string(trails->frame(t, frame, scan, tree)) : "-";
     const Stats s = tree.stats();
     std::printf("%6zu %8zu %8zu %8zu %8zu %9zu %8zu %6.2f %6.1f %9.3f %7s\n", t, u.scan_points, u.inserted, u.pruned,
                 u.cleared, s.points, s.nodes, s.mean_leaf_depth, s.points ? double(s.bytes) / double(s.points) : 0.0,

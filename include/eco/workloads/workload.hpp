@@ -4,12 +4,14 @@
 /// ready for EgoOctree::update(frame.world_T_sensor, frame.points) — or, for a tree that keeps
 /// per-point attributes, update(frame.world_T_sensor, AttributedScan(frame, first_id).view).
 
+#include <eco/config.hpp>
 #include <eco/types.hpp>
 
 #include <Eigen/Geometry>
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +39,11 @@ struct AttributedScan {
   AttributedScan(const AttributedScan&) = delete;  // `view` points into the arrays
   AttributedScan& operator=(const AttributedScan&) = delete;
 };
+
+/// The scan a tree keeping `kept` takes of `frame`: its points alone when it keeps no attribute,
+/// else the view of an AttributedScan made in `attributed` (ids from frame.index * 2^20, unique
+/// over a run of frames of up to a million points).
+ScanView scan_for(const WorkloadFrame& frame, const KeptAttributes& kept, std::optional<AttributedScan>& attributed);
 
 class Workload {
  public:
