@@ -10,6 +10,7 @@ RangeImage::RangeImage(const SensorModel& sensor, ScanView scan, std::vector<dou
       columns_(sensor.columns()),
       row_guard_(2.0 * kFastAtan2Error / sensor.vertical_resolution + 1e-9),
       column_guard_(2.0 * kFastAtan2Error / sensor.horizontal_resolution + 1e-9),
+      top_row_((sensor.vertical_fov_max - sensor.vertical_fov_min) / sensor.vertical_resolution),
       per_row_(1.0 / sensor.vertical_resolution),
       per_column_(1.0 / sensor.horizontal_resolution) {
   const std::size_t pixels = std::size_t(rows_) * std::size_t(columns_);
@@ -22,9 +23,8 @@ RangeImage::RangeImage(const SensorModel& sensor, ScanView scan, std::vector<dou
     const Eigen::Vector3d v(p[0], p[1], p[2]);
     if (!v.allFinite()) continue;
     double range = 0.0;
-    if (const std::optional<Pixel> at = pixel_of(v, range)) {
-      double& slot = nearest[index(at->row, at->column)];
-      slot = std::min(slot, range);
+    if (const std::uint32_t pixel = pixel_of(v, range); pixel != kOutside) {
+      nearest[pixel] = std::min(nearest[pixel], range);
     }
   }
   // The minimum over 3x3 neighbourhoods, separably: along each row (wrapping), then across rows.
