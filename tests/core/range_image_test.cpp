@@ -78,5 +78,45 @@ TEST(RangeImage, FastPixelsAreTheFormulasPixels) {
   }
 }
 
+/// nearest_around against the rule written out: the minimum range of the returns binned (by
+/// exact_pixel_of) into the pixel and its 8 neighbours, columns wrapping around, rows not.
+TEST(RangeImage, NearestAroundIsTheMinimumOverThe3x3Neighbourhood) {
+  SensorModel sensor;
+  sensor.horizontal_resolution = 2.0;  // a small image, densely filled, some pixels empty
+  sensor.vertical_resolution = 1.0;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> azimuth(-kPi, kPi), elevation(-26.0, 3.0), range(0.3, 110.0);
+  std::vector<float> scan;
+  for (int i = 0; i < 3000; ++i) {
+    const double a = azimuth(rng), e = elevation(rng) * kPi / 180, r = range(rng);
+    scan.insert(scan.end(), {float(r * std::cos(e) * std::cos(a)), float(r * std::cos(e) * std::sin(a)), float(r * std::sin(e))});
+  }
+  std::vector<double> storage;
+  const RangeImage image(sensor, ScanView(scan.data(), scan.size() / 3), storage);
+  const int rows = sensor.rows(), columns = sensor.columns();
+  std::vector<double> nearest(std::size_t(rows * columns), RangeImage::kNoReturn);
+  for (std::size_t i = 0; i < scan.size(); i += 3) {
+    double r = 0.0;
+    const std::uint32_t pixel = image.exact_pixel_of(Eigen::Vector3d(scan[i], scan[i + 1], scan[i + 2]), r);
+    if (pixel != RangeImage::kOutside) nearest[pixel] = std::min(nearest[pixel], r);
+  }
+  std::size_t empty = 0;
+  for (int row = 0; row < rows; ++row) {
+    for (int column = 0; column < columns; ++column) {
+      double expected = RangeImage::kNoReturn;
+      for (int dr = -1; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+          if (row + dr < 0 || row + dr >= rows) continue;
+          expected = std::min(expected, nearest[std::size_t((row + dr) * columns + (column + dc + columns) % columns)]);
+        }
+      }
+      ASSERT_EQ(image.nearest_around(std::uint32_t(row * columns + column)), expected) << row << ", " << column;
+      empty += expected == RangeImage::kNoReturn ? 1 : 0;
+    }
+  }
+  EXPECT_GT(empty, 0u);  // the edge rows above and below the returns' elevations
+  EXPECT_LT(empty, std::size_t(rows * columns) / 2);
+}
+
 }  // namespace
 }  // namespace eco::detail
