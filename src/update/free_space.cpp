@@ -10,8 +10,10 @@
 namespace eco::detail {
 namespace {
 
-/// Clearing's judgement: subtrees wholly beyond the sensor's range stay whole; the others are
-/// looked into point by point.
+constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+
+/// Clearing's judgement: subtrees wholly beyond the sensor's range or outside its vertical field of
+/// view stay whole; the others are looked into point by point.
 class Clearer {
  public:
   Clearer(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats)
@@ -19,6 +21,9 @@ class Clearer {
         image_(tree.config().sensor, scan, tree.range_image_buffer()),
         sensor_R_world_(motion.pose.linear().transpose()),
         sensor_from_anchor_(motion.anchor - motion.pose.translation()),
+        up_(sensor_R_world_.row(2).transpose()),
+        sin_fov_min_(std::sin(tree.config().sensor.vertical_fov_min * kRadiansPerDegree)),
+        sin_fov_max_(std::sin(tree.config().sensor.vertical_fov_max * kRadiansPerDegree)),
         margin_(tree.config().clearing.margin),
         max_range_(tree.config().sensor.max_range),
         stats_(stats) {}
@@ -27,7 +32,22 @@ class Clearer {
     const Eigen::Vector3d sensor = -sensor_from_anchor_;  // in the anchor frame
     const double nearest = std::sqrt(n.bounds.sq_dist({sensor[0], sensor[1], sensor[2]}));
     // widened against rounding: a point's range is computed after the rotation
-    return nearest > max_range_ * (1.0 + 1e-9) + 1e-9 ? Verdict::KeepAll : Verdict::LookInside;
+    const bool beyond_range = nearest > max_range_ * (1.0 + 1e-9) + 1e-9;
+    return beyond_range || outside_field_of_view(n.bounds) ? Verdict::KeepAll : Verdict::LookInside;
+  }
+  /// Whether every point of `box` (anchor frame) lies below or above the vertical field of view:
+  /// sin(elevation) = (p - sensor) . up / |p - sensor|, bounded over the box, with a slack far
+  /// above the rounding of the pixel formulas.
+  [[nodiscard]] bool outside_field_of_view(const Aabb& box) const {
+    const Eigen::Vector3d lo(box.lo[0], box.lo[1], box.lo[2]), hi(box.hi[0], box.hi[1], box.hi[2]);
+    const Eigen::Vector3d centre = 0.5 * (lo + hi) + sensor_from_anchor_;  // from the sensor, world axes
+    const Eigen::Vector3d half = 0.5 * (hi - lo);
+    const double height = up_.dot(centre), spread = up_.cwiseAbs().dot(half);  // (p - sensor) . up
+    const double farthest = (centre.cwiseAbs() + half).norm();
+    const double nearest = std::sqrt(box.sq_dist({-sensor_from_anchor_[0], -sensor_from_anchor_[1], -sensor_from_anchor_[2]}));
+    const double slack = 1e-6 * farthest;
+    if (height + spread + slack < sin_fov_min_ * (sin_fov_min_ <= 0.0 ? farthest : nearest)) return true;
+    return height - spread - slack > sin_fov_max_ * (sin_fov_max_ >= 0.0 ? farthest : nearest);
   }
   void drop(std::uint32_t) {}  // never judged DropAll
   /// Judges the leaf's points first, and rewrites the leaf only when the scan saw through some:
@@ -65,6 +85,8 @@ class Clearer {
   RangeImage image_;
   Eigen::Matrix3d sensor_R_world_;
   Eigen::Vector3d sensor_from_anchor_;  // anchor - sensor position: stored point + this = sensor-relative, world axes
+  Eigen::Vector3d up_;                  // the sensor's z axis, world axes
+  double sin_fov_min_ = 0.0, sin_fov_max_ = 0.0;
   double margin_ = 0.0;
   double max_range_ = 0.0;
   UpdateStats& stats_;
