@@ -33,18 +33,17 @@ class Clearer {
     const double nearest = std::sqrt(n.bounds.sq_dist({sensor[0], sensor[1], sensor[2]}));
     // widened against rounding: a point's range is computed after the rotation
     const bool beyond_range = nearest > max_range_ * (1.0 + 1e-9) + 1e-9;
-    return beyond_range || outside_field_of_view(n.bounds) ? Verdict::KeepAll : Verdict::LookInside;
+    return beyond_range || outside_field_of_view(n.bounds, nearest) ? Verdict::KeepAll : Verdict::LookInside;
   }
-  /// Whether every point of `box` (anchor frame) lies below or above the vertical field of view:
-  /// sin(elevation) = (p - sensor) . up / |p - sensor|, bounded over the box, with a slack far
-  /// above the rounding of the pixel formulas.
-  [[nodiscard]] bool outside_field_of_view(const Aabb& box) const {
+  /// Whether every point of `box` (anchor frame; `nearest` [m] from the sensor) lies below or
+  /// above the vertical field of view: sin(elevation) = (p - sensor) . up / |p - sensor|, bounded
+  /// over the box, with a slack far above the rounding of the pixel formulas.
+  [[nodiscard]] bool outside_field_of_view(const Aabb& box, double nearest) const {
     const Eigen::Vector3d lo(box.lo[0], box.lo[1], box.lo[2]), hi(box.hi[0], box.hi[1], box.hi[2]);
     const Eigen::Vector3d centre = 0.5 * (lo + hi) + sensor_from_anchor_;  // from the sensor, world axes
     const Eigen::Vector3d half = 0.5 * (hi - lo);
     const double height = up_.dot(centre), spread = up_.cwiseAbs().dot(half);  // (p - sensor) . up
     const double farthest = (centre.cwiseAbs() + half).norm();
-    const double nearest = std::sqrt(box.sq_dist({-sensor_from_anchor_[0], -sensor_from_anchor_[1], -sensor_from_anchor_[2]}));
     const double slack = 1e-6 * farthest;
     if (height + spread + slack < sin_fov_min_ * (sin_fov_min_ <= 0.0 ? farthest : nearest)) return true;
     return height - spread - slack > sin_fov_max_ * (sin_fov_max_ >= 0.0 ? farthest : nearest);
