@@ -108,19 +108,30 @@ class Tree {
   /// partitioned by octant top-down from the start table's depth, so each node on their way
   /// is visited once per batch, not once per point.
   void insert_batch(std::vector<StoredPoint>& batch);
-  /// Inserts the new points `collect(std::vector<StoredPoint>&)` appends, in a buffer the tree
-  /// keeps (no frame pays for fresh pages); returns how many.
+  /// Inserts the new points `collect(push)` hands to push(const StoredPoint&), in batches of at
+  /// most kInsertChunk through buffers the tree keeps: no frame pays for fresh pages, and the
+  /// buffers stay small however many points a frame brings. Returns how many.
   template <class Collect>
   std::size_t insert_collected(Collect&& collect) {
     std::vector<StoredPoint>& batch = batch_buffers_.scan;
+    std::size_t n = 0;
+    const auto insert = [&] {
+      n += batch.size();
+      insert_batch(batch);
+      batch.clear();
+    };
     batch.clear();
-    collect(batch);
-    const std::size_t n = batch.size();
-    insert_batch(batch);
-    trim_buffers(n);
-    batch.clear();
+    collect([&](const StoredPoint& s) {
+      batch.push_back(s);
+      if (batch.size() == kInsertChunk) insert();
+    });
+    insert();
+    trim_buffers(std::min(n, kInsertChunk));
     return n;
   }
+  /// Points per batch of insert_collected: large enough that a batch shares the walk down to most
+  /// start nodes, small enough that its buffers (2 x 28 B a point) stay under 1 MB.
+  static constexpr std::size_t kInsertChunk = std::size_t(1) << 15;
   /// Counts one more point in p's density cell unless it holds the cap already; says whether it did.
   bool admit_by_density(const std::array<float, 3>& p) {
     return density_.add_below(density_key(p), cfg_.density_cap.max_points);

@@ -43,7 +43,7 @@ void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& s
   const std::uint32_t stamp = kept.stamps ? motion.frame : 0;
   const bool capped = tree.config().density_cap.enabled();
   const bool timed_age = tree.config().max_age_seconds > 0.0;
-  stats.inserted = tree.insert_collected([&](std::vector<StoredPoint>& batch) {
+  stats.inserted = tree.insert_collected([&](auto&& insert) {
     admission(motion, tree.config().insert_policy)
         .for_each(scan, stats, [&](const std::array<float, 3>& p, std::size_t i) {
           const StoredPoint s{p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
@@ -57,7 +57,7 @@ void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& s
             ++stats.skipped_by_density;
             return;
           }
-          batch.push_back(s);
+          insert(s);
         });
   });
 }

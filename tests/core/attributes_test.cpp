@@ -3,6 +3,7 @@
 // and time-origin moves), aged in seconds, and returned by every query exactly as a brute force
 // that keeps them in a flat list says.
 
+#include "core/tree.hpp"
 #include "support/compare.hpp"
 #include "support/rejected.hpp"
 #include "support/streams.hpp"
@@ -188,6 +189,35 @@ INSTANTIATE_TEST_SUITE_P(Streams, AttributesOracle,
                                             ::testing::Bool(),
                                             ::testing::Values(Age::None, Age::Frames, Age::Seconds)),
                          param_name);
+
+/// A scan of more new points than one insertion batch (Tree::kInsertChunk) goes in through several
+/// batches: every point and its attributes are held as if in one.
+TEST(AttributesOracleLargeScans, ScansLargerThanAnInsertionBatchAreHeldWhole) {
+  Config cfg;
+  cfg.attributes = {true, true, true};
+  EgoOctree tree(cfg);
+  Oracle oracle(cfg);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-9.9f, 9.9f);  // inside the box
+  const std::size_t n = 2 * detail::Tree::kInsertChunk + 1234;
+  for (int t = 0; t < 2; ++t) {
+    SCOPED_TRACE("frame " + std::to_string(t));
+    Scan scan;
+    for (std::size_t i = 0; i < n; ++i) {
+      scan.points.emplace_back(u(rng), u(rng), 0.5f * u(rng));
+      scan.attributes.ids.push_back(std::uint32_t(t * n + i));
+      scan.attributes.intensities.push_back(float(i % 251));
+      scan.attributes.times.push_back(kStartTime + t + 1e-6 * double(i));
+    }
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = Eigen::Vector3d(0.05 * t, 0.0, 0.0);
+    const UpdateStats st = tree.update(pose, scan.view());
+    oracle.update(pose, scan.points, tree.precision_origin(), scan.attributes, tree.time_origin());
+    EXPECT_GT(st.inserted, 2 * detail::Tree::kInsertChunk);
+    expect_same_attributes(tree, oracle, rng);
+    if (HasFatalFailure()) return;
+  }
+}
 
 TEST(AttributesBadInput, MissingArraysAndBadTimesAreRejectedNamingThemAndTheTreeIsUnchanged) {
   Config cfg;
