@@ -239,7 +239,9 @@ namespace {
 
 template <class T>
 void trim(std::vector<T>& buffer, std::size_t used) {
-  constexpr std::size_t kKeep = 1 << 16;  // below this, not worth giving back
+  // Below this (~110 KB of points) a buffer comes from the heap's free lists, not fresh pages:
+  // not worth keeping for a map that takes in few points a frame (a capped one).
+  constexpr std::size_t kKeep = 1 << 12;
   if (buffer.capacity() > kKeep && buffer.capacity() > 4 * used) {
     std::vector<T>().swap(buffer);
     buffer.reserve(used);
