@@ -130,7 +130,7 @@ class Tree {
     return n;
   }
   /// Points per batch of insert_collected: large enough that a batch shares the walk down to most
-  /// start nodes, small enough that its buffers (2 x 28 B a point) stay under 1 MB.
+  /// start nodes, small enough that its buffers (two copies, 28 B a point each) stay under 2 MB.
   static constexpr std::size_t kInsertChunk = std::size_t(1) << 15;
   /// Counts one more point in p's density cell unless it holds the cap already; says whether it did.
   bool admit_by_density(const std::array<float, 3>& p) {

@@ -44,11 +44,13 @@ class RangeImage {
     const double row = (fast_atan2_degrees(v.z(), horizontal) - sensor_.vertical_fov_min) * per_row_;
     const double column = (fast_atan2_degrees(v.y(), v.x()) + 180.0) * per_column_;
     // One test for every wall: both ends of each guarded interval in the same row and column,
-    // inside the field of view (int() is floor there: both are >= 0).
+    // inside the field of view (truncation is floor there: both are >= 0). The rows are clamped
+    // first: a point far below a narrow field of view lies more rows away than an int holds.
     const double low = row - row_guard_, high = row + row_guard_;
     const double left = column - column_guard_, right = column + column_guard_;
-    if ((low >= 0.0) & (high < top_row_) & (int(low) == int(high)) & (left >= 0.0) & (int(left) == int(right))) {
-      return index(std::min(rows_ - 1, int(low)), wrapped(int(left)));
+    const int low_row = int(std::clamp(low, -1.0, top_row_)), high_row = int(std::clamp(high, -1.0, top_row_));
+    if ((low >= 0.0) & (high < top_row_) & (low_row == high_row) & (left >= 0.0) & (int(left) == int(right))) {
+      return index(std::min(rows_ - 1, low_row), wrapped(int(left)));
     }
     if (high < 0.0 || low >= top_row_) return kOutside;  // clearly below or above the field of view
     return exact_pixel_of(v, range);

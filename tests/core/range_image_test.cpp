@@ -78,6 +78,31 @@ TEST(RangeImage, FastPixelsAreTheFormulasPixels) {
   }
 }
 
+/// A very narrow field of view cut into very fine rows: a point below or above it lies billions of
+/// rows away, more than an int holds; the lookup still answers as the formulas do.
+TEST(RangeImage, PointsFarOutsideANarrowFieldOfViewAreOutside) {
+  SensorModel narrow;
+  narrow.vertical_fov_min = 1.0;
+  narrow.vertical_fov_max = 1.001;
+  narrow.vertical_resolution = 1e-9;  // 1e6 rows: -90 deg is 9.1e10 rows below
+  narrow.horizontal_resolution = 360.0;
+  std::vector<double> storage;
+  const RangeImage image(narrow, ScanView(), storage);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-50.0, 50.0);
+  std::size_t inside = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Eigen::Vector3d v(u(rng), u(rng), u(rng));
+    if (i % 4 == 0) v.z() = std::tan(1.0005 * kPi / 180) * std::hypot(v.x(), v.y());  // inside
+    double fast_range = -1.0, exact_range = -2.0;
+    const std::uint32_t fast = image.pixel_of(v, fast_range);
+    ASSERT_EQ(fast, image.exact_pixel_of(v, exact_range)) << v.transpose();
+    ASSERT_EQ(fast_range, exact_range);
+    inside += fast != RangeImage::kOutside ? 1 : 0;
+  }
+  EXPECT_GT(inside, 1000u);
+}
+
 /// nearest_around against the rule written out: the minimum range of the returns binned (by
 /// exact_pixel_of) into the pixel and its 8 neighbours, columns wrapping around, rows not.
 TEST(RangeImage, NearestAroundIsTheMinimumOverThe3x3Neighbourhood) {
