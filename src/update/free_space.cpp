@@ -72,9 +72,9 @@ class Clearer {
         sensor_R_world_ * (sensor_from_anchor_ + Eigen::Vector3d(double(p[0]), double(p[1]), double(p[2])));
     double range = 0.0;
     const std::uint32_t pixel = image_.pixel_of(v, range);
+    const double nearest = pixel == RangeImage::kOutside ? RangeImage::kNoReturn : image_.nearest_around(pixel);
     // a pixel with no return around it (kNoReturn) is not evidence of free space
-    const bool seen_through = pixel != RangeImage::kOutside && image_.nearest_around(pixel) != RangeImage::kNoReturn &&
-                              image_.nearest_around(pixel) > range + margin_;
+    const bool seen_through = nearest != RangeImage::kNoReturn && nearest > range + margin_;
     stats_.cleared += seen_through ? 1 : 0;
     return seen_through;
   }

@@ -38,7 +38,7 @@ class RangeImage {
   [[nodiscard]] std::uint32_t pixel_of(const Eigen::Vector3d& v, double& range) const {
     const double horizontal = std::sqrt(v.x() * v.x() + v.y() * v.y());
     if (horizontal == 0.0) return exact_pixel_of(v, range);  // straight up or down, or the origin
-    range = v.norm();
+    range = v.norm();  // not from `horizontal`: the formulas' own rounding, as exact_pixel_of's
     if (!(range <= sensor_.max_range)) return kOutside;
     // in rows and columns (reciprocals: their rounding is far inside the guards)
     const double row = (fast_atan2_degrees(v.z(), horizontal) - sensor_.vertical_fov_min) * per_row_;
