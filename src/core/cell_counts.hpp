@@ -35,8 +35,7 @@ class CellCounts {
       return true;
     }
     if (4 * (used_ + 1) > 3 * slots_.size()) grow();
-    std::size_t i = home(key);
-    while (count_of(slots_[i]) != 0 && key_of(slots_[i]) != key) i = next(i);
+    const std::size_t i = find(key);
     finger_ = i;
     if (count_of(slots_[i]) == 0) {
       if (limit == 0) return false;
@@ -55,8 +54,7 @@ class CellCounts {
   /// Forgets one point of `key`'s cell; nothing happens if the cell holds none.
   void remove(std::uint64_t key) {
     if (slots_.empty()) return;
-    std::size_t i = home(key);
-    while (count_of(slots_[i]) != 0 && key_of(slots_[i]) != key) i = next(i);
+    const std::size_t i = find(key);
     if (count_of(slots_[i]) == 0) return;
     if (--slots_[i] & kCountMask) return;
     erase_at(i);
@@ -64,11 +62,7 @@ class CellCounts {
 
   /// Points counted in `key`'s cell.
   [[nodiscard]] std::uint32_t count(std::uint64_t key) const {
-    if (slots_.empty()) return 0;
-    for (std::size_t i = home(key); count_of(slots_[i]) != 0; i = next(i)) {
-      if (key_of(slots_[i]) == key) return count_of(slots_[i]);
-    }
-    return 0;
+    return slots_.empty() ? 0 : count_of(slots_[find(key)]);
   }
 
   void clear() {
@@ -99,6 +93,12 @@ class CellCounts {
     return std::size_t((key * 0x9E3779B97F4A7C15ull) >> shift_);  // Fibonacci hashing
   }
   [[nodiscard]] std::size_t next(std::size_t i) const { return (i + 1) & (slots_.size() - 1); }
+  /// The slot of `key`'s cell, or the empty slot that ends its probe run (the table is not empty).
+  [[nodiscard]] std::size_t find(std::uint64_t key) const {
+    std::size_t i = home(key);
+    while (count_of(slots_[i]) != 0 && key_of(slots_[i]) != key) i = next(i);
+    return i;
+  }
 
   void grow() {
     std::vector<std::uint64_t> old(slots_.empty() ? 1024 : 2 * slots_.size(), 0);
