@@ -64,7 +64,19 @@ class PointStore {
     if (m == 0) return;
     reserve(link, count, count + m);
     Block b = block(link);
-    for (std::uint32_t i = 0; i < m; ++i) write(b, count + i, first[i]);
+    // column by column: each loop writes one array, with no test per point
+    float* x = b.x + count;
+    float* y = x + b.capacity;
+    float* z = y + b.capacity;
+    for (std::uint32_t i = 0; i < m; ++i) {
+      x[i] = first[i].p[0];
+      y[i] = first[i].p[1];
+      z[i] = first[i].p[2];
+    }
+    if (b.stamps) std::transform(first, last, b.stamps + count, [](const StoredPoint& s) { return s.stamp; });
+    if (b.ids) std::transform(first, last, b.ids + count, [](const StoredPoint& s) { return s.id; });
+    if (b.intensities) std::transform(first, last, b.intensities + count, [](const StoredPoint& s) { return s.intensity; });
+    if (b.times) std::transform(first, last, b.times + count, [](const StoredPoint& s) { return s.time; });
   }
   void push(std::uint32_t& link, std::uint32_t count, const StoredPoint& s) { append(link, count, &s, &s + 1); }
 
@@ -213,12 +225,18 @@ class PointStore {
   void move_to(std::uint32_t& link, std::uint32_t count, int c) {
     const std::uint32_t fresh = take(c);
     if (link != kNone) {
-      const Block from = block(link);
-      Block to = block(fresh);
-      for (std::uint32_t i = 0; i < count; ++i) write(to, i, read(from, i));
+      copy_points(block(link), block(fresh), count);
       release(link);
     }
     link = fresh;
+  }
+  /// Copies the first `count` points of `from` into `to`, one column at a time.
+  static void copy_points(const Block& from, const Block& to, std::uint32_t count) {
+    for (std::size_t a = 0; a < 3; ++a) std::copy_n(from.x + a * from.capacity, count, to.x + a * to.capacity);
+    if (from.stamps) std::copy_n(from.stamps, count, to.stamps);
+    if (from.ids) std::copy_n(from.ids, count, to.ids);
+    if (from.intensities) std::copy_n(from.intensities, count, to.intensities);
+    if (from.times) std::copy_n(from.times, count, to.times);
   }
   std::uint32_t take(int c) {
     if (pools_.size() <= std::size_t(c)) pools_.resize(std::size_t(c) + 1);
