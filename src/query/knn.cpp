@@ -1,5 +1,6 @@
-// Exact k-nearest neighbours: depth-first, children in order of their bounds' distance, pruned
-// by the current k-th distance.
+// Exact k-nearest neighbours: depth-first, children in order of their cells' distance, pruned by
+// the current k-th distance — first by the cell (from the lattice walls: no child read), then by
+// the child's tight bounds.
 
 #include "query/frames.hpp"
 #include "query/queries.hpp"
@@ -66,7 +67,7 @@ class KnnSearch {
 
   /// The number found: min(k, points held).
   std::size_t run() {
-    if (results_.capacity() > 0 && t_.root() != detail::kNone) visit(t_.root());
+    if (results_.capacity() > 0 && t_.root() != detail::kNone) visit(t_.root(), t_.root_cell());
     return found_;
   }
 
@@ -84,7 +85,7 @@ class KnnSearch {
     if (found_ == k) worst_ = results_.sq_dist(found_ - 1);
   }
 
-  void visit(std::uint32_t id) {
+  void visit(std::uint32_t id, const detail::Cell& cell) {
     const detail::Node& n = t_.nodes()[id];
     if (n.leaf) {
       const detail::PointSpan c = t_.points().span(n.link, n.count);
@@ -97,13 +98,23 @@ class KnnSearch {
       }
       return;
     }
-    std::array<std::pair<double, std::uint32_t>, 8> order;
+    // The children's cells bound their points, and their distances come from the lattice walls
+    // without loading a child: a child whose cell lies beyond the k-th distance is never read.
+    // (Rounding keeps the bound: a point inside a cell is, axis by axis, no nearer than its walls.)
+    const detail::Lattice& lattice = t_.lattice();
+    const std::int64_t half = lattice.side(cell.depth) / 2;
+    std::array<std::array<double, 2>, 3> gap{};  // per axis: squared gap to the lower, upper half
+    for (int a = 0; a < 3; ++a) {
+      const double lo = lattice.wall(a, cell.lo[a]), mid = lattice.wall(a, cell.lo[a] + half),
+                   hi = lattice.wall(a, cell.lo[a] + 2 * half);
+      const double below = std::max({lo - q_[a], 0.0, q_[a] - mid}), above = std::max({mid - q_[a], 0.0, q_[a] - hi});
+      gap[std::size_t(a)] = {below * below, above * above};
+    }
+    std::array<std::pair<double, int>, 8> order;
     int m = 0;
     for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = t_.nodes().child(id, o);
-      if (ch != detail::kNone && t_.nodes()[ch].count > 0) {
-        order[std::size_t(m++)] = {t_.nodes()[ch].bounds.sq_dist(q_), ch};
-      }
+      if (t_.nodes().child(id, o) == detail::kNone) continue;
+      order[std::size_t(m++)] = {gap[0][std::size_t(o & 1)] + gap[1][std::size_t(o >> 1 & 1)] + gap[2][std::size_t(o >> 2)], o};
     }
     for (int i = 1; i < m; ++i) {  // insertion sort: at most eight children
       for (int j = i; j > 0 && order[std::size_t(j)] < order[std::size_t(j - 1)]; --j) {
@@ -112,7 +123,11 @@ class KnnSearch {
     }
     for (int i = 0; i < m; ++i) {
       if (order[std::size_t(i)].first >= worst()) break;
-      visit(order[std::size_t(i)].second);
+      const int o = order[std::size_t(i)].second;
+      const std::uint32_t ch = t_.nodes().child(id, o);
+      const detail::Node& child = t_.nodes()[ch];
+      // then the child's tight bounds, once it is read
+      if (child.count > 0 && child.bounds.sq_dist(q_) < worst()) visit(ch, lattice.child(cell, o));
     }
   }
 
