@@ -30,21 +30,33 @@ inline std::int64_t world_grid_index(double origin, float stored, double size) {
 
 /// world_grid_index for many points of one grid: a multiplication by 1/size and a truncation
 /// make the guess (a division and a floor call per axis cost the density cap ~1/4 of its update).
+/// The truncation is taken of a positive number — the index counted from a base below the
+/// origin's cell — so that it is the floor: a truncation of a negative one is off by one, and
+/// the walls' loops then mispredict on every point on that side of the origin.
 class WorldGrid {
  public:
   /// `origin`: the precision origin the stored coordinates are relative to.
-  WorldGrid(const std::array<double, 3>& origin, double size) : origin_(origin), size_(size), inverse_(1.0 / size) {}
+  WorldGrid(const std::array<double, 3>& origin, double size) : origin_(origin), size_(size), inverse_(1.0 / size) {
+    for (int a = 0; a < 3; ++a) base_[a] = std::floor(origin[a] * inverse_) - kReach;
+  }
 
   [[nodiscard]] std::array<std::int64_t, 3> index(const std::array<float, 3>& stored) const {
     return {index(0, stored[0]), index(1, stored[1]), index(2, stored[2])};
   }
   [[nodiscard]] std::int64_t index(int axis, float stored) const {
     const double f = stored;
-    return settle_grid_index(std::int64_t((origin_[axis] + f) * inverse_), origin_[axis], f, size_);
+    // within kReach cells of the origin the difference is positive and far below 2^53: exact
+    // enough that only a point within rounding of a wall is settled by a step
+    const double above_base = (origin_[axis] + f) * inverse_ - base_[axis];
+    const std::int64_t guess = std::int64_t(above_base) + std::int64_t(base_[axis]);
+    return settle_grid_index(guess, origin_[axis], f, size_);
   }
 
  private:
+  static constexpr double kReach = 0x1p31;  // cells either side of the origin's guessed at once
+
   std::array<double, 3> origin_;
+  std::array<double, 3> base_{};
   double size_, inverse_;
 };
 

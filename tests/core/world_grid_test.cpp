@@ -60,6 +60,7 @@ TEST(WorldGrid, AgreesWithTheRuleOnAndBetweenWalls) {
       {{4.0e6, -3.5e6, 1.0e5}, 0.05, 60.0},
       {{123.456, -0.001, 7.0}, 1e-3, 20.0},
       {{0.0, 0.0, 0.0}, 7.3, 200.0},
+      {{500.0, -500.0, 0.0}, 1e-9, 100.0},  // points ~1e11 cells from the origin's: guesses below 0 truncate up
   };
   std::mt19937 rng(7);
   for (const GridCase& c : cases) {
