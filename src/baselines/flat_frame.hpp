@@ -4,6 +4,7 @@
 // the admission of scan points, and the density cap's cell counts.
 
 #include "core/cell_counts.hpp"
+#include "core/density_gate.hpp"
 #include "core/tree.hpp"
 #include "update/admission.hpp"
 #include "query/queries.hpp"
@@ -50,9 +51,19 @@ class FlatFrame {
     return {stats, motion_->origin_shift, detail::admission(*motion_, cfg_.insert_policy)};
   }
 
-  /// The density cap's verdict on a new point (counted when admitted); true while the cap is off.
-  bool admits(const std::array<float, 3>& p) {
-    return !cfg_.density_cap.enabled() || density_.add_below(key(p), cfg_.density_cap.max_points);
+  /// Calls take(p) for each point of `scan` that `step`'s admission and the density cap admit
+  /// (counted in the cap's cells), in scan order: ECO's shift-in, without the tree.
+  template <class Take>
+  void take_in(ScanView scan, Step& step, Take&& take) {
+    const auto admitted = [&](auto&& offer) {
+      step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p, std::size_t) { offer(p, p); });
+    };
+    if (!cfg_.density_cap.enabled()) {
+      admitted([&](const std::array<float, 3>& p, const std::array<float, 3>&) { take(p); });
+      return;
+    }
+    step.stats.skipped_by_density += detail::pass_density_cap<std::array<float, 3>>(
+        density_, density_grid_, cfg_.density_cap.max_points, admitted, take);
   }
   /// Counts a held point (after the origin moved) or forgets one that left.
   void count(const std::array<float, 3>& p) {

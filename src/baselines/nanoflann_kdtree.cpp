@@ -55,9 +55,7 @@ class NanoflannKdTree final : public Method {
       frame_.forget(p);
       return true;
     });
-    step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p, std::size_t) {
-      if (frame_.admits(p)) held_.p.push_back(p);
-    });
+    frame_.take_in(scan, step, [&](const std::array<float, 3>& p) { held_.p.push_back(p); });
     index_ = std::make_unique<KdTree>(3, held_, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));
   }
 

@@ -53,8 +53,7 @@ class PclOctree final : public Method {
     } else {
       remove_what_left(previous, box);
     }
-    step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p, std::size_t) {
-      if (!frame_.admits(p)) return;
+    frame_.take_in(scan, step, [&](const std::array<float, 3>& p) {
       octree_->addPointToCloud(pcl::PointXYZ(p[0], p[1], p[2]), cloud_);
       alive_.push_back(true);
       ++held_count_;

@@ -3,6 +3,7 @@
 // inserting a batch of points, splitting a leaf, dissolving and collapsing subtrees, refitting bounds.
 
 #include "core/cell_counts.hpp"
+#include "core/density_gate.hpp"
 #include "core/geometry.hpp"
 #include "core/node_store.hpp"
 #include "core/point_store.hpp"
@@ -132,9 +133,12 @@ class Tree {
   /// Points per batch of insert_collected: large enough that a batch shares the walk down to most
   /// start nodes, small enough that its buffers (two copies, 28 B a point each) stay under 2 MB.
   static constexpr std::size_t kInsertChunk = std::size_t(1) << 15;
-  /// Counts one more point in p's density cell unless it holds the cap already; says whether it did.
-  bool admit_by_density(const std::array<float, 3>& p) {
-    return density_.add_below(density_key(p), cfg_.density_cap.max_points);
+  /// The density cap over new points: calls produce(offer), where offer(item, p) hands an item
+  /// whose point is p, and pass(item) for each item whose density cell holds fewer points than
+  /// the cap (counting it there), in the order offered. Returns how many it refused.
+  template <class Item, class Produce, class Pass>
+  std::size_t pass_density_cap(Produce&& produce, Pass&& pass) {
+    return detail::pass_density_cap<Item>(density_, density_grid_, cfg_.density_cap.max_points, produce, pass);
   }
   /// Working memory for free-space clearing's range image (src/update/range_image.hpp), kept so
   /// that no frame pays for fresh pages; counted in bytes().

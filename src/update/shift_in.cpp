@@ -41,9 +41,9 @@ void reinsert(Tree& tree, std::vector<StoredPoint>& points, UpdateStats& stats) 
 void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats) {
   const Columns& kept = tree.points().columns();
   const std::uint32_t stamp = kept.stamps ? motion.frame : 0;
-  const bool capped = tree.config().density_cap.enabled();
   const bool timed_age = tree.config().max_age_seconds > 0.0;
-  stats.inserted = tree.insert_collected([&](auto&& insert) {
+  // offer(point, coordinates) for each scan point the policy admits, in scan order
+  const auto admitted = [&](auto&& offer) {
     admission(motion, tree.config().insert_policy)
         .for_each(scan, stats, [&](const std::array<float, 3>& p, std::size_t i) {
           const StoredPoint s{p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
@@ -52,13 +52,16 @@ void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& s
             ++stats.skipped_by_age;
             return;
           }
-          // in scan order: the first points to reach a full cell are the ones kept
-          if (capped && !tree.admit_by_density(p)) {
-            ++stats.skipped_by_density;
-            return;
-          }
-          insert(s);
+          offer(s, p);
         });
+  };
+  stats.inserted = tree.insert_collected([&](auto&& insert) {
+    if (!tree.config().density_cap.enabled()) {
+      admitted([&](const StoredPoint& s, const std::array<float, 3>&) { insert(s); });
+      return;
+    }
+    // in scan order: the first points to reach a full cell are the ones kept
+    stats.skipped_by_density += tree.pass_density_cap<StoredPoint>(admitted, insert);
   });
 }
 

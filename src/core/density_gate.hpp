@@ -1,0 +1,54 @@
+#pragma once
+// The density cap's verdicts on a frame's new points, in their order (the first points to reach a
+// full cell are the ones kept), judged a group at a time: the group's cells are found and their
+// hash slots prefetched before the first is asked, so the table's cache misses overlap instead of
+// following one another (a capped map's counts outgrow L1, and a scan visits its cells in no
+// order a cache can guess). Shared by ECO and the flat baselines, so their caps cost alike.
+
+#include "core/cell_counts.hpp"
+#include "core/geometry.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+namespace eco::detail {
+
+/// Points judged together: enough misses in flight to hide most of their latency, few enough
+/// that the group stays in L1.
+inline constexpr std::size_t kDensityGroup = 64;
+
+/// Calls produce(offer); each offer(item, p) hands an item whose point is p (stored
+/// coordinates). Calls pass(item) for each item, in the order offered, whose cell in `grid` held
+/// fewer than `limit` points (counting it there); returns how many it refused.
+template <class Item, class Produce, class Pass>
+std::size_t pass_density_cap(CellCounts& counts, const WorldGrid& grid, std::uint32_t limit, Produce&& produce,
+                             Pass&& pass) {
+  std::array<Item, kDensityGroup> items;
+  std::array<std::array<float, 3>, kDensityGroup> points;
+  std::array<std::uint64_t, kDensityGroup> keys{};
+  std::size_t held = 0, refused = 0;
+  const auto judge = [&] {
+    for (std::size_t i = 0; i < held; ++i) {
+      keys[i] = CellCounts::key(grid.index(points[i]));
+      counts.prefetch(keys[i]);
+    }
+    for (std::size_t i = 0; i < held; ++i) {
+      if (counts.add_below(keys[i], limit)) {
+        pass(items[i]);
+      } else {
+        ++refused;
+      }
+    }
+    held = 0;
+  };
+  produce([&](const Item& item, const std::array<float, 3>& p) {
+    items[held] = item;
+    points[held] = p;
+    if (++held == kDensityGroup) judge();
+  });
+  judge();
+  return refused;
+}
+
+}  // namespace eco::detail
