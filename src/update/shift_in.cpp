@@ -38,30 +38,45 @@ void reinsert(Tree& tree, std::vector<StoredPoint>& points, UpdateStats& stats) 
   points.clear();
 }
 
+namespace {
+
+/// A scan point the policy admits: its stored coordinates and its index in the scan.
+struct Candidate {
+  std::array<float, 3> p;
+  std::uint32_t index;
+};
+
+}  // namespace
+
 void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats) {
   const Columns& kept = tree.points().columns();
   const std::uint32_t stamp = kept.stamps ? motion.frame : 0;
   const bool timed_age = tree.config().max_age_seconds > 0.0;
-  // offer(point, coordinates) for each scan point the policy admits, in scan order
+  const auto stored = [&](const Candidate& c) {
+    const std::uint32_t i = c.index;
+    return StoredPoint{c.p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
+                       kept.times ? float(scan.times[i] - motion.clock.origin) : 0.0f};
+  };
+  // offer(candidate, coordinates) for each scan point the policy admits, in scan order
   const auto admitted = [&](auto&& offer) {
     admission(motion, tree.config().insert_policy)
         .for_each(scan, stats, [&](const std::array<float, 3>& p, std::size_t i) {
-          const StoredPoint s{p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
-                              kept.times ? float(scan.times[i] - motion.clock.origin) : 0.0f};
-          if (timed_age && tree.age_key(s) < tree.age_cutoff()) {  // older than the limit already
+          const Candidate c{p, std::uint32_t(i)};
+          if (timed_age && tree.age_key(stored(c)) < tree.age_cutoff()) {  // older than the limit already
             ++stats.skipped_by_age;
             return;
           }
-          offer(s, p);
+          offer(c, p);
         });
   };
   stats.inserted = tree.insert_collected([&](auto&& insert) {
+    const auto insert_candidate = [&](const Candidate& c) { insert(stored(c)); };
     if (!tree.config().density_cap.enabled()) {
-      admitted([&](const StoredPoint& s, const std::array<float, 3>&) { insert(s); });
+      admitted([&](const Candidate& c, const std::array<float, 3>&) { insert_candidate(c); });
       return;
     }
     // in scan order: the first points to reach a full cell are the ones kept
-    stats.skipped_by_density += tree.pass_density_cap<StoredPoint>(admitted, insert);
+    stats.skipped_by_density += tree.pass_density_cap<Candidate>(admitted, insert_candidate);
   });
 }
 
