@@ -184,19 +184,18 @@ struct Lattice {
     }
     return k;
   }
-  /// The cell at `depth` that holds p. Floor first, then walls decide, so the answer agrees with
-  /// octant() descents exactly.
-  [[nodiscard]] Cell cell_at(int depth, const std::array<float, 3>& p) const {
+  /// The cells at `depth` as a world grid: cell index j is the cell whose lower corner is
+  /// j * side(depth) units, its walls the same doubles as wall() gives (side(depth) * unit is a
+  /// power-of-two multiple of unit, so the products round alike; x - (-o) is o + x).
+  [[nodiscard]] WorldGrid grid(int depth) const {
+    return WorldGrid({-origin[0], -origin[1], -origin[2]}, double(side(depth)) * unit);
+  }
+  /// The cell at `depth` that holds p: agrees with octant() descents exactly.
+  [[nodiscard]] Cell cell_at(int depth, const std::array<float, 3>& p) const { return cell_of(depth, grid(depth).index(p)); }
+  /// The cell at `depth` whose index in grid(depth) is j.
+  [[nodiscard]] Cell cell_of(int depth, const std::array<std::int64_t, 3>& j) const {
     const std::int64_t s = side(depth);
-    Cell c{{}, depth};
-    for (int a = 0; a < 3; ++a) {
-      const double units = (double(p[a]) - origin[a]) / unit;
-      std::int64_t g = std::int64_t(std::floor(units / double(s))) * s;
-      while (double(p[a]) < wall(a, g)) g -= s;
-      while (double(p[a]) >= wall(a, g + s)) g += s;
-      c.lo[a] = g;
-    }
-    return c;
+    return {{j[0] * s, j[1] * s, j[2] * s}, depth};
   }
 };
 

@@ -196,8 +196,9 @@ void Tree::insert_batch(std::vector<StoredPoint>& batch) {
   } else {
     std::vector<std::uint32_t>& slot_of = batch_buffers_.slot_of;
     slot_of.resize(batch.size());
+    const WorldGrid cells = lattice_.grid(depth);
     for (std::size_t i = 0; i < batch.size(); ++i) {
-      const std::int64_t slot = start_slot(lattice_.cell_at(depth, batch[i].p));
+      const std::int64_t slot = start_slot(lattice_.cell_of(depth, cells.index(batch[i].p)));
       assert(slot >= 0);
       slot_of[i] = std::uint32_t(slot);
       ++first[std::size_t(slot) + 1];
@@ -281,23 +282,26 @@ std::uint32_t Tree::start_node(const Cell& cell, Cell& at) {
   return id;
 }
 
-void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, StoredPoint* to,
-                        StoredPoint* temp) {
+Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, StoredPoint* to,
+                               StoredPoint* temp) {
   const auto m = std::uint32_t(to - from);
+  Added added;
   if (nodes_[id].leaf && (nodes_[id].count + m <= cfg_.leaf_capacity || cell.depth >= lattice_.max_depth)) {
     Node& n = nodes_[id];
     points_.append(n.link, n.count, from, to);
     n.count += m;
     for (const StoredPoint* s = from; s != to; ++s) {
-      n.bounds.grow(s->p[0], s->p[1], s->p[2]);
-      n.oldest = std::min(n.oldest, age_key(*s));
+      added.bounds.grow(s->p[0], s->p[1], s->p[2]);
+      added.oldest = std::min(added.oldest, age_key(*s));
     }
-    return;
+    n.bounds.merge(added.bounds);
+    n.oldest = std::min(n.oldest, added.oldest);
+    return added;
   }
   if (nodes_[id].leaf) split(id, cell);  // holds at most leaf_capacity: its children need no split
   nodes_.prefetch_children(id);  // their misses overlap the partition below
   // Partition by octant into `temp` (a counting sort); the children read from there and use
-  // this range as theirs.
+  // this range as theirs. Bounds and ages are taken once, at the leaves, and summed on the way up.
   const std::int64_t half = lattice_.side(cell.depth) / 2;
   const std::array<double, 3> wall{lattice_.wall(0, cell.lo[0] + half), lattice_.wall(1, cell.lo[1] + half),
                                    lattice_.wall(2, cell.lo[2] + half)};
@@ -306,27 +310,24 @@ void Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, S
            int(double(s.p[2]) >= wall[2]) << 2;
   };
   std::array<std::uint32_t, 9> begin{};
-  Aabb bounds;
-  std::uint32_t oldest = kNone;
-  for (const StoredPoint* s = from; s != to; ++s) {
-    ++begin[std::size_t(octant(*s)) + 1];
-    bounds.grow(s->p[0], s->p[1], s->p[2]);
-    oldest = std::min(oldest, age_key(*s));
-  }
+  for (const StoredPoint* s = from; s != to; ++s) ++begin[std::size_t(octant(*s)) + 1];
   for (std::size_t o = 0; o < 8; ++o) begin[o + 1] += begin[o];
   std::array<std::uint32_t, 8> at{};
   std::copy(begin.begin(), begin.end() - 1, at.begin());
   for (const StoredPoint* s = from; s != to; ++s) temp[at[std::size_t(octant(*s))]++] = *s;
-  Node& n = nodes_[id];
-  n.count += m;
-  n.bounds.merge(bounds);
-  n.oldest = std::min(n.oldest, oldest);
   for (int o = 0; o < 8; ++o) {
     const std::uint32_t lo = begin[std::size_t(o)], hi = begin[std::size_t(o) + 1];
     if (lo == hi) continue;
     const std::uint32_t ch = child_or_new(id, cell, o);
-    insert_range(ch, lattice_.child(cell, o), temp + lo, temp + hi, from + lo);
+    const Added below = insert_range(ch, lattice_.child(cell, o), temp + lo, temp + hi, from + lo);
+    added.bounds.merge(below.bounds);
+    added.oldest = std::min(added.oldest, below.oldest);
   }
+  Node& n = nodes_[id];
+  n.count += m;
+  n.bounds.merge(added.bounds);
+  n.oldest = std::min(n.oldest, added.oldest);
+  return added;
 }
 
 std::uint32_t Tree::child_or_new(std::uint32_t id, const Cell& cell, int octant) {
@@ -463,10 +464,10 @@ void Tree::collapse(std::uint32_t id) {
 // Start table
 
 std::int64_t Tree::start_slot(const Cell& cell) const {
-  const std::int64_t side = lattice_.side(start_.depth);
+  const int log2_side = lattice_.max_depth - start_.depth;
   std::int64_t slot = 0;
   for (int a = 2; a >= 0; --a) {
-    const std::int64_t rel = (cell.lo[a] - root_cell_.lo[a]) / side;
+    const std::int64_t rel = (cell.lo[a] - root_cell_.lo[a]) >> log2_side;  // a division by side(start depth)
     if (cell.lo[a] < root_cell_.lo[a] || rel >= start_.per_axis) return -1;
     slot = slot * start_.per_axis + rel;
   }

@@ -216,11 +216,14 @@ class Tree {
   /// The child of inner node `id` (cell `cell`) at `octant`, created empty if missing.
   std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
   void split(std::uint32_t id, const Cell& cell);
+  struct Added {  // what an insertion put below a node
+    Aabb bounds;
+    std::uint32_t oldest = kNone;
+  };
   /// Inserts points [from, to), all inside `cell`, into the subtree at `id`, partitioning them
   /// into `temp` (room for as many; both ranges are overwritten); the caller adds them to the
-  /// ancestors.
-  void insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, StoredPoint* to,
-                    StoredPoint* temp);
+  /// ancestors. Returns their bounds and oldest age key.
+  Added insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, StoredPoint* to, StoredPoint* temp);
   /// The node at the start depth holding `cell`'s points (created on the way), or the leaf above.
   std::uint32_t start_node(const Cell& cell, Cell& at);
   /// Prefetches the start node of the first non-empty group at or after `from` (groups of
