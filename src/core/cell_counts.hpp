@@ -29,14 +29,8 @@ class CellCounts {
 
   /// Counts one more point in `key`'s cell if it holds fewer than `limit`; says whether it did.
   bool add_below(std::uint64_t key, std::uint32_t limit) {
-    if (finger_ < slots_.size() && key_of(slots_[finger_]) == key) {  // the last cell asked
-      if (count_of(slots_[finger_]) >= limit) return false;
-      ++slots_[finger_];
-      return true;
-    }
     if (4 * (used_ + 1) > 3 * slots_.size()) grow();
     const std::size_t i = find(key);
-    finger_ = i;
     if (count_of(slots_[i]) == 0) {
       if (limit == 0) return false;
       slots_[i] = key << kCountBits | 1u;
@@ -73,7 +67,6 @@ class CellCounts {
   void clear() {
     std::fill(slots_.begin(), slots_.end(), 0);
     used_ = 0;
-    finger_ = kNoSlot;
   }
 
   /// Calls f(key, count) for every cell holding a point.
@@ -90,7 +83,6 @@ class CellCounts {
  private:
   static constexpr int kCountBits = 10;
   static constexpr std::uint64_t kCountMask = (std::uint64_t{1} << kCountBits) - 1;
-  static constexpr std::size_t kNoSlot = ~std::size_t{0};
 
   static std::uint64_t key_of(std::uint64_t slot) { return slot >> kCountBits; }
   static std::uint32_t count_of(std::uint64_t slot) { return std::uint32_t(slot & kCountMask); }
@@ -109,7 +101,6 @@ class CellCounts {
     std::vector<std::uint64_t> old(slots_.empty() ? 1024 : 2 * slots_.size(), 0);
     old.swap(slots_);  // slots_ is the bigger, empty table now
     shift_ = 64 - std::countr_zero(slots_.size());
-    finger_ = kNoSlot;
     for (std::uint64_t s : old) {
       if (count_of(s) == 0) continue;
       std::size_t i = home(key_of(s));
@@ -122,7 +113,6 @@ class CellCounts {
   void erase_at(std::size_t hole) {
     slots_[hole] = 0;
     --used_;
-    finger_ = kNoSlot;
     for (std::size_t i = next(hole); count_of(slots_[i]) != 0; i = next(i)) {
       const std::size_t want = home(key_of(slots_[i]));
       // slot i may move to the hole when its home is not in the cyclic range (hole, i]
@@ -137,7 +127,6 @@ class CellCounts {
   std::vector<std::uint64_t> slots_;
   std::size_t used_ = 0;
   int shift_ = 64;
-  std::size_t finger_ = kNoSlot;
 };
 
 }  // namespace eco::detail
