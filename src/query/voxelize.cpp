@@ -94,25 +94,34 @@ class LatticeVoxels {
   /// Marks the voxel of each point of leaf `n` (cell `cell`) in a bitmask, found by comparing
   /// with the lattice walls inside the cell, then lists the marked voxels: no division, no sort.
   void collect_masked(const Node& n, const Cell& cell) {
-    const int levels = depth_ - cell.depth;
-    const int per_axis = 1 << levels;
+    switch (depth_ - cell.depth) {  // loops of a known length: unrolled, without branches
+      case 1: return collect_masked<1>(n, cell);
+      case 2: return collect_masked<2>(n, cell);
+      default: return collect_masked<3>(n, cell);
+    }
+  }
+  template <int Levels>
+  void collect_masked(const Node& n, const Cell& cell) {
+    static_assert(Levels <= kMaskLevels);
+    constexpr int per_axis = 1 << Levels;
     const std::int64_t step = t_.lattice().side(depth_);
-    std::array<std::array<float, 8>, 3> walls{};  // inner walls, then +inf: the counts stop there
+    std::array<std::array<float, per_axis - 1>, 3> walls{};  // the inner walls
     for (int a = 0; a < 3; ++a) {
-      walls[a].fill(std::numeric_limits<float>::infinity());
       for (int j = 1; j < per_axis; ++j) {
         walls[a][std::size_t(j - 1)] = float_at_or_above(t_.lattice().wall(a, cell.lo[a] + j * step));
       }
     }
     std::array<std::uint64_t, 8> marked{};
-    t_.points().for_each(n.link, n.count, [&](const StoredPoint& s) {
+    const PointSpan points = t_.points().span(n.link, n.count);
+    for (std::uint32_t i = 0; i < points.size; ++i) {
+      const std::array<float, 3> p{points.x[i], points.y[i], points.z[i]};
       std::array<int, 3> sub{};
       for (int a = 0; a < 3; ++a) {
-        for (int j = 0; j + 1 < per_axis; ++j) sub[a] += int(s.p[a] >= walls[a][std::size_t(j)]);
+        for (int j = 0; j + 1 < per_axis; ++j) sub[a] += int(p[a] >= walls[a][std::size_t(j)]);
       }
       const int bit = (sub[2] * per_axis + sub[1]) * per_axis + sub[0];
       marked[std::size_t(bit >> 6)] |= std::uint64_t{1} << (bit & 63);
-    });
+    }
     const std::array<std::int64_t, 3> first{cell.lo[0] >> shift_, cell.lo[1] >> shift_, cell.lo[2] >> shift_};
     for (std::size_t w = 0; w < marked.size(); ++w) {
       for (std::uint64_t bits = marked[w]; bits != 0; bits &= bits - 1) {
