@@ -111,7 +111,8 @@ class LatticeVoxels {
         walls[a][std::size_t(j - 1)] = float_at_or_above(t_.lattice().wall(a, cell.lo[a] + j * step));
       }
     }
-    std::array<std::uint64_t, 8> marked{};
+    // one word for up to 64 voxels: kept in a register, not read back from memory every point
+    std::array<std::uint64_t, (per_axis * per_axis * per_axis + 63) / 64> marked{};
     const PointSpan points = t_.points().span(n.link, n.count);
     for (std::uint32_t i = 0; i < points.size; ++i) {
       const std::array<float, 3> p{points.x[i], points.y[i], points.z[i]};
