@@ -4,6 +4,7 @@
 // hash slots prefetched before the first is asked, so the table's cache misses overlap instead of
 // following one another (a capped map's counts outgrow L1, and a scan visits its cells in no
 // order a cache can guess). Shared by ECO and the flat baselines, so their caps cost alike.
+// Points leaving in bulk (a subtree dropped at the box's edge) leave their cells the same way.
 
 #include "core/cell_counts.hpp"
 #include "core/geometry.hpp"
@@ -49,6 +50,28 @@ std::size_t pass_density_cap(CellCounts& counts, const WorldGrid& grid, std::uin
   });
   judge();
   return refused;
+}
+
+/// Calls produce(offer); each offer(p) hands the stored coordinates of a point that leaves, and
+/// its cell in `grid` forgets it — a group at a time, slots prefetched, as pass_density_cap asks.
+template <class Produce>
+void forget_in_groups(CellCounts& counts, const WorldGrid& grid, Produce&& produce) {
+  std::array<std::array<float, 3>, kDensityGroup> points;
+  std::array<std::uint64_t, kDensityGroup> keys{};
+  std::size_t held = 0;
+  const auto forget = [&] {
+    for (std::size_t i = 0; i < held; ++i) {
+      keys[i] = CellCounts::key(grid.index(points[i]));
+      counts.prefetch(keys[i]);
+    }
+    for (std::size_t i = 0; i < held; ++i) counts.remove(keys[i]);
+    held = 0;
+  };
+  produce([&](const std::array<float, 3>& p) {
+    points[held] = p;
+    if (++held == kDensityGroup) forget();
+  });
+  forget();
 }
 
 }  // namespace eco::detail

@@ -426,7 +426,8 @@ void Tree::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
 void Tree::drop(std::uint32_t id, UpdateStats& stats) {
   stats.pruned += nodes_[id].count;
   if (cfg_.density_cap.enabled()) {
-    walk_points(id, [&](const StoredPoint& s) { forget(s); });
+    forget_in_groups(density_, density_grid_,
+                     [&](auto&& offer) { walk_points(id, [&](const StoredPoint& s) { offer(s.p); }); });
   }
   dissolve(id, nullptr);
 }

@@ -1,7 +1,7 @@
 // pass_density_cap, the density cap over a stream of new points judged a group at a time, against
 // the rule applied one point after another with a std::map of counts: the same points pass, in
 // the same order, for streams shorter than, equal to and longer than a group, with cells already
-// partly full, and the counts it leaves are the map's.
+// partly full, and the counts it leaves are the map's. forget_in_groups leaves the map's counts too.
 
 #include "core/density_gate.hpp"
 
@@ -55,6 +55,32 @@ TEST(DensityGate, PassesWhatTheRuleOneByOnePassesInOrder) {
       EXPECT_EQ(refused, want_refused) << n << " points, limit " << limit;
       for (const auto& [key, held] : expected) EXPECT_EQ(counts.count(key), held);
     }
+  }
+}
+
+TEST(DensityGate, ForgetsInGroupsWhatLeavesOnePointAtATime) {
+  const WorldGrid grid({-4.0, 7.5, 0.25}, 0.2);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
+  for (const std::size_t leaving : {std::size_t{0}, std::size_t{1}, kDensityGroup, 3 * kDensityGroup + 5}) {
+    std::vector<std::array<float, 3>> held;
+    for (std::size_t i = 0; i < 4 * kDensityGroup; ++i) held.push_back({coordinate(rng), coordinate(rng), coordinate(rng)});
+    CellCounts counts;
+    std::map<std::uint64_t, std::uint32_t> expected;
+    for (const auto& p : held) {
+      counts.add(CellCounts::key(grid.index(p)));
+      ++expected[CellCounts::key(grid.index(p))];
+    }
+    forget_in_groups(counts, grid, [&](auto&& offer) {
+      for (std::size_t i = 0; i < leaving; ++i) offer(held[i]);
+    });
+    for (std::size_t i = 0; i < leaving; ++i) --expected[CellCounts::key(grid.index(held[i]))];
+    std::size_t cells = 0;
+    for (const auto& [key, n] : expected) {
+      EXPECT_EQ(counts.count(key), n) << leaving << " leaving";
+      cells += n > 0 ? 1 : 0;
+    }
+    EXPECT_EQ(counts.cells(), cells) << leaving << " leaving";
   }
 }
 
