@@ -66,12 +66,51 @@ class KnnSearch {
       : t_(t), q_(q), results_(results) {}
 
   /// The number found: min(k, points held).
+  ///
+  /// Bottom-up: the deepest node whose cell holds the query is searched first, then each ancestor
+  /// with the child already searched left out, until the k-th distance lies inside the cell just
+  /// searched — no point outside it can be nearer (as for the cells' pruning below, rounding keeps
+  /// the bound) — or the root has been searched.
   std::size_t run() {
-    if (results_.capacity() > 0 && t_.root() != detail::kNone) visit(t_.root(), t_.root_cell());
+    if (results_.capacity() == 0 || t_.root() == detail::kNone) return found_;
+    const detail::Lattice& lattice = t_.lattice();
+    std::array<std::pair<std::uint32_t, detail::Cell>, 64> path;
+    std::size_t deepest = 0;
+    path[0] = {t_.root(), t_.root_cell()};
+    if (inside_gap(path[0].second) > 0.0) {
+      while (!t_.nodes()[path[deepest].first].leaf && deepest + 1 < path.size()) {
+        const auto& [id, cell] = path[deepest];
+        const std::int64_t half = lattice.side(cell.depth) / 2;
+        int o = 0;
+        for (int a = 0; a < 3; ++a) o |= int(q_[std::size_t(a)] >= lattice.wall(a, cell.lo[std::size_t(a)] + half)) << a;
+        const std::uint32_t child = t_.nodes().child(id, o);
+        if (child == detail::kNone) break;
+        path[deepest + 1] = {child, lattice.child(cell, o)};
+        ++deepest;
+      }
+    }
+    for (std::size_t level = deepest + 1; level-- > 0;) {
+      visit(path[level].first, path[level].second);
+      if (found_ == results_.capacity() && worst_ < inside_gap(path[level].second)) break;
+      searched_ = path[level].first;
+    }
     return found_;
   }
 
  private:
+  /// The squared distance from the query to the nearest wall of `cell`, from inside (0 outside).
+  [[nodiscard]] double inside_gap(const detail::Cell& cell) const {
+    const detail::Lattice& lattice = t_.lattice();
+    const std::int64_t side = lattice.side(cell.depth);
+    double gap = std::numeric_limits<double>::infinity();
+    for (std::size_t a = 0; a < 3; ++a) {
+      const double below = q_[a] - lattice.wall(int(a), cell.lo[a]);
+      const double above = lattice.wall(int(a), cell.lo[a] + side) - q_[a];
+      gap = std::min({gap, below, above});
+    }
+    return gap > 0.0 ? gap * gap : 0.0;
+  }
+
   [[nodiscard]] double worst() const { return worst_; }
 
   /// Inserts in order: a shift of the farther ones, cheaper than a heap for the small k of
@@ -125,6 +164,7 @@ class KnnSearch {
       if (order[std::size_t(i)].first >= worst()) break;
       const int o = order[std::size_t(i)].second;
       const std::uint32_t ch = t_.nodes().child(id, o);
+      if (ch == searched_) continue;  // searched before its ancestors
       const detail::Node& child = t_.nodes()[ch];
       // then the child's tight bounds, once it is read
       if (child.count > 0 && child.bounds.sq_dist(q_) < worst()) visit(ch, lattice.child(cell, o));
@@ -136,6 +176,7 @@ class KnnSearch {
   Results results_;
   std::size_t found_ = 0;
   double worst_ = std::numeric_limits<double>::infinity();  // the k-th distance once k are found
+  std::uint32_t searched_ = detail::kNone;                   // the subtree run() searched last
 };
 
 }  // namespace
