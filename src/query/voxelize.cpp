@@ -1,9 +1,10 @@
 // Occupied voxels of a world-aligned grid.
 //
 // When the voxel side is a lattice cell side (Quantised mode, resolution = voxel_size * 2^i), a
-// node at the voxel's depth is one voxel and its points need not be looked at: the map costs a
-// visit per voxel plus the points of leaves coarser than a voxel (marked in a bitmask against the
-// lattice walls inside the leaf). Distinct leaves never share a voxel then, so a leaf's keys are
+// node at the voxel's depth is one voxel and its points need not be looked at — nor the node
+// itself: its parent lists its children as voxels (no node is empty between updates). The map
+// costs a visit per node above the voxels plus the points of leaves coarser than a voxel (marked
+// in a bitmask against the lattice walls inside the leaf). Distinct leaves never share a voxel then, so a leaf's keys are
 // made unique within the leaf and the map needs no global sort.
 // Any other resolution visits every point and sorts.
 
@@ -77,6 +78,14 @@ class LatticeVoxels {
         collect_masked(n, cell);
       } else {
         collect_sorted(n);
+      }
+      return;
+    }
+    if (cell.depth + 1 == depth_) {  // the children are one voxel each, and none is empty (check_tree)
+      for (int o = 0; o < 8; ++o) {
+        if (t_.nodes().child(id, o) == kNone) continue;
+        const Cell voxel = t_.lattice().child(cell, o);
+        out_.push_back({voxel.lo[0] >> shift_, voxel.lo[1] >> shift_, voxel.lo[2] >> shift_});
       }
       return;
     }
