@@ -58,12 +58,8 @@ class FlatFrame {
     const auto admitted = [&](auto&& offer) {
       step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p, std::size_t) { offer(p, p); });
     };
-    if (!cfg_.density_cap.enabled()) {
-      admitted([&](const std::array<float, 3>& p, const std::array<float, 3>&) { take(p); });
-      return;
-    }
-    step.stats.skipped_by_density += detail::pass_density_cap<std::array<float, 3>>(
-        density_, density_grid_, cfg_.density_cap.max_points, admitted, take);
+    step.stats.skipped_by_density +=
+        detail::pass_density_cap<std::array<float, 3>>(density_, density_grid_, cfg_.density_cap, admitted, take);
   }
   /// Counts a held point (after the origin moved) or forgets one that left.
   void count(const std::array<float, 3>& p) {

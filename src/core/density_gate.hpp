@@ -9,6 +9,8 @@
 #include "core/cell_counts.hpp"
 #include "core/geometry.hpp"
 
+#include <eco/config.hpp>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -18,6 +20,15 @@ namespace eco::detail {
 /// Points judged together: enough misses in flight to hide most of their latency, few enough
 /// that the group stays in L1.
 inline constexpr std::size_t kDensityGroup = 64;
+
+/// Finds the cells of points[0, n) (their keys) and starts loading their slots.
+inline void find_cells(const CellCounts& counts, const WorldGrid& grid, const std::array<float, 3>* points,
+                       std::uint64_t* keys, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    keys[i] = CellCounts::key(grid.index(points[i]));
+    counts.prefetch(keys[i]);
+  }
+}
 
 /// Calls produce(offer); each offer(item, p) hands an item whose point is p (stored
 /// coordinates). Calls pass(item) for each item, in the order offered, whose cell in `grid` held
@@ -30,10 +41,7 @@ std::size_t pass_density_cap(CellCounts& counts, const WorldGrid& grid, std::uin
   std::array<std::uint64_t, kDensityGroup> keys{};
   std::size_t held = 0, refused = 0;
   const auto judge = [&] {
-    for (std::size_t i = 0; i < held; ++i) {
-      keys[i] = CellCounts::key(grid.index(points[i]));
-      counts.prefetch(keys[i]);
-    }
+    find_cells(counts, grid, points.data(), keys.data(), held);
     for (std::size_t i = 0; i < held; ++i) {
       if (counts.add_below(keys[i], limit)) {
         pass(items[i]);
@@ -52,6 +60,17 @@ std::size_t pass_density_cap(CellCounts& counts, const WorldGrid& grid, std::uin
   return refused;
 }
 
+/// pass_density_cap under `cap`, or, when the cap is off, pass(item) for every item offered.
+template <class Item, class Produce, class Pass>
+std::size_t pass_density_cap(CellCounts& counts, const WorldGrid& grid, const DensityCap& cap, Produce&& produce,
+                             Pass&& pass) {
+  if (!cap.enabled()) {
+    produce([&](const Item& item, const std::array<float, 3>&) { pass(item); });
+    return 0;
+  }
+  return pass_density_cap<Item>(counts, grid, cap.max_points, produce, pass);
+}
+
 /// Calls produce(offer); each offer(p) hands the stored coordinates of a point that leaves, and
 /// its cell in `grid` forgets it — a group at a time, slots prefetched, as pass_density_cap asks.
 template <class Produce>
@@ -60,10 +79,7 @@ void forget_in_groups(CellCounts& counts, const WorldGrid& grid, Produce&& produ
   std::array<std::uint64_t, kDensityGroup> keys{};
   std::size_t held = 0;
   const auto forget = [&] {
-    for (std::size_t i = 0; i < held; ++i) {
-      keys[i] = CellCounts::key(grid.index(points[i]));
-      counts.prefetch(keys[i]);
-    }
+    find_cells(counts, grid, points.data(), keys.data(), held);
     for (std::size_t i = 0; i < held; ++i) counts.remove(keys[i]);
     held = 0;
   };

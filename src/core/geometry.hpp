@@ -167,8 +167,10 @@ struct Lattice {
   [[nodiscard]] bool contains(const Cell& c, const Aabb& b) const {
     return contains(c, b.lo) && contains(c, b.hi);
   }
-  /// Which of the eight children of `c` holds p (bit a set: upper half along axis a).
-  [[nodiscard]] int octant(const Cell& c, const std::array<float, 3>& p) const {
+  /// Which of the eight children of `c` holds p (bit a set: upper half along axis a); p stored
+  /// (float) or a query (double).
+  template <class Coordinate>
+  [[nodiscard]] int octant(const Cell& c, const std::array<Coordinate, 3>& p) const {
     const std::int64_t half = side(c.depth) / 2;
     int o = 0;
     for (int a = 0; a < 3; ++a) {

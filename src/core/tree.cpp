@@ -294,8 +294,7 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* 
       added.bounds.grow(s->p[0], s->p[1], s->p[2]);
       added.oldest = std::min(added.oldest, age_key(*s));
     }
-    n.bounds.merge(added.bounds);
-    n.oldest = std::min(n.oldest, added.oldest);
+    added.add_to(n);
     return added;
   }
   if (nodes_[id].leaf) split(id, cell);  // holds at most leaf_capacity: its children need no split
@@ -319,14 +318,10 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* 
     const std::uint32_t lo = begin[std::size_t(o)], hi = begin[std::size_t(o) + 1];
     if (lo == hi) continue;
     const std::uint32_t ch = child_or_new(id, cell, o);
-    const Added below = insert_range(ch, lattice_.child(cell, o), temp + lo, temp + hi, from + lo);
-    added.bounds.merge(below.bounds);
-    added.oldest = std::min(added.oldest, below.oldest);
+    added.merge(insert_range(ch, lattice_.child(cell, o), temp + lo, temp + hi, from + lo));
   }
-  Node& n = nodes_[id];
-  n.count += m;
-  n.bounds.merge(added.bounds);
-  n.oldest = std::min(n.oldest, added.oldest);
+  nodes_[id].count += m;
+  added.add_to(nodes_[id]);
   return added;
 }
 

@@ -14,6 +14,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <optional>
@@ -135,10 +136,11 @@ class Tree {
   static constexpr std::size_t kInsertChunk = std::size_t(1) << 15;
   /// The density cap over new points: calls produce(offer), where offer(item, p) hands an item
   /// whose point is p, and pass(item) for each item whose density cell holds fewer points than
-  /// the cap (counting it there), in the order offered. Returns how many it refused.
+  /// the cap (counting it there; every item while the cap is off), in the order offered. Returns
+  /// how many it refused.
   template <class Item, class Produce, class Pass>
   std::size_t pass_density_cap(Produce&& produce, Pass&& pass) {
-    return detail::pass_density_cap<Item>(density_, density_grid_, cfg_.density_cap.max_points, produce, pass);
+    return detail::pass_density_cap<Item>(density_, density_grid_, cfg_.density_cap, produce, pass);
   }
   /// Working memory for free-space clearing's range image (src/update/range_image.hpp), kept so
   /// that no frame pays for fresh pages; counted in bytes().
@@ -219,6 +221,14 @@ class Tree {
   struct Added {  // what an insertion put below a node
     Aabb bounds;
     std::uint32_t oldest = kNone;
+    void merge(const Added& more) {
+      bounds.merge(more.bounds);
+      oldest = std::min(oldest, more.oldest);
+    }
+    void add_to(Node& n) const {  // count aside: the caller knows how many
+      n.bounds.merge(bounds);
+      n.oldest = std::min(n.oldest, oldest);
+    }
   };
   /// Inserts points [from, to), all inside `cell`, into the subtree at `id`, partitioning them
   /// into `temp` (room for as many; both ranges are overwritten); the caller adds them to the

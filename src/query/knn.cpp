@@ -74,15 +74,13 @@ class KnnSearch {
   std::size_t run() {
     if (results_.capacity() == 0 || t_.root() == detail::kNone) return found_;
     const detail::Lattice& lattice = t_.lattice();
-    std::array<std::pair<std::uint32_t, detail::Cell>, 64> path;
+    std::array<std::pair<std::uint32_t, detail::Cell>, kMaxPath> path;
     std::size_t deepest = 0;
     path[0] = {t_.root(), t_.root_cell()};
     if (inside_gap(path[0].second) > 0.0) {
       while (!t_.nodes()[path[deepest].first].leaf && deepest + 1 < path.size()) {
         const auto& [id, cell] = path[deepest];
-        const std::int64_t half = lattice.side(cell.depth) / 2;
-        int o = 0;
-        for (int a = 0; a < 3; ++a) o |= int(q_[std::size_t(a)] >= lattice.wall(a, cell.lo[std::size_t(a)] + half)) << a;
+        const int o = lattice.octant(cell, q_);
         const std::uint32_t child = t_.nodes().child(id, o);
         if (child == detail::kNone) break;
         path[deepest + 1] = {child, lattice.child(cell, o)};
@@ -98,6 +96,8 @@ class KnnSearch {
   }
 
  private:
+  static constexpr std::size_t kMaxPath = 64;  // nodes from the root down: more than Config's deepest level
+
   /// The squared distance from the query to the nearest wall of `cell`, from inside (0 outside).
   [[nodiscard]] double inside_gap(const detail::Cell& cell) const {
     const detail::Lattice& lattice = t_.lattice();

@@ -70,7 +70,7 @@ class LatticeVoxels {
     const Node& n = t_.nodes()[id];
     if (n.count == 0) return;
     if (cell.depth == depth_) {  // the node is one voxel
-      out_.push_back({cell.lo[0] >> shift_, cell.lo[1] >> shift_, cell.lo[2] >> shift_});
+      out_.push_back(voxel_of(cell));
       return;
     }
     if (n.leaf) {
@@ -83,9 +83,7 @@ class LatticeVoxels {
     }
     if (cell.depth + 1 == depth_) {  // the children are one voxel each, and none is empty (check_tree)
       for (int o = 0; o < 8; ++o) {
-        if (t_.nodes().child(id, o) == kNone) continue;
-        const Cell voxel = t_.lattice().child(cell, o);
-        out_.push_back({voxel.lo[0] >> shift_, voxel.lo[1] >> shift_, voxel.lo[2] >> shift_});
+        if (t_.nodes().child(id, o) != kNone) out_.push_back(voxel_of(t_.lattice().child(cell, o)));
       }
       return;
     }
@@ -99,6 +97,11 @@ class LatticeVoxels {
  private:
   /// A leaf at most this many levels above the voxels marks its voxels in a bitmask (8^3 bits).
   static constexpr int kMaskLevels = 3;
+
+  /// The voxel whose lower corner is `cell`'s (a cell at or above the voxels' depth).
+  [[nodiscard]] VoxelKey voxel_of(const Cell& cell) const {
+    return {cell.lo[0] >> shift_, cell.lo[1] >> shift_, cell.lo[2] >> shift_};
+  }
 
   /// Marks the voxel of each point of leaf `n` (cell `cell`) in a bitmask, found by comparing
   /// with the lattice walls inside the cell, then lists the marked voxels: no division, no sort.
@@ -132,12 +135,12 @@ class LatticeVoxels {
       const int bit = (sub[2] * per_axis + sub[1]) * per_axis + sub[0];
       marked[std::size_t(bit >> 6)] |= std::uint64_t{1} << (bit & 63);
     }
-    const std::array<std::int64_t, 3> first{cell.lo[0] >> shift_, cell.lo[1] >> shift_, cell.lo[2] >> shift_};
+    const VoxelKey first = voxel_of(cell);
     for (std::size_t w = 0; w < marked.size(); ++w) {
       for (std::uint64_t bits = marked[w]; bits != 0; bits &= bits - 1) {
         const int bit = int(w * 64) + std::countr_zero(bits);
-        out_.push_back({first[0] + bit % per_axis, first[1] + bit / per_axis % per_axis,
-                        first[2] + bit / (per_axis * per_axis)});
+        out_.push_back({first.x + bit % per_axis, first.y + bit / per_axis % per_axis,
+                        first.z + bit / (per_axis * per_axis)});
       }
     }
   }

@@ -70,13 +70,9 @@ void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& s
         });
   };
   stats.inserted = tree.insert_collected([&](auto&& insert) {
-    const auto insert_candidate = [&](const Candidate& c) { insert(stored(c)); };
-    if (!tree.config().density_cap.enabled()) {
-      admitted([&](const Candidate& c, const std::array<float, 3>&) { insert_candidate(c); });
-      return;
-    }
     // in scan order: the first points to reach a full cell are the ones kept
-    stats.skipped_by_density += tree.pass_density_cap<Candidate>(admitted, insert_candidate);
+    stats.skipped_by_density +=
+        tree.pass_density_cap<Candidate>(admitted, [&](const Candidate& c) { insert(stored(c)); });
   });
 }
 
