@@ -18,7 +18,8 @@ class Clearer {
  public:
   Clearer(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats)
       : t_(tree),
-        image_(tree.config().sensor, scan, tree.range_image_buffer()),
+        pixels_(tree.config().sensor),
+        image_(pixels_, scan, tree.range_image_buffer()),
         sensor_R_world_(motion.pose.linear().transpose()),
         sensor_from_anchor_(motion.anchor - motion.pose.translation()),
         up_(sensor_R_world_.row(2).transpose()),
@@ -71,8 +72,8 @@ class Clearer {
     const Eigen::Vector3d v =
         sensor_R_world_ * (sensor_from_anchor_ + Eigen::Vector3d(double(p[0]), double(p[1]), double(p[2])));
     double range = 0.0;
-    const std::uint32_t pixel = image_.pixel_of(v, range);
-    const double nearest = pixel == RangeImage::kOutside ? RangeImage::kNoReturn : image_.nearest_around(pixel);
+    const std::uint32_t pixel = pixels_.pixel_of(v, range);
+    const double nearest = pixel == PixelLookup::kOutside ? RangeImage::kNoReturn : image_.nearest_around(pixel);
     // a pixel with no return around it (kNoReturn) is not evidence of free space
     const bool seen_through = nearest != RangeImage::kNoReturn && nearest > range + margin_;
     stats_.cleared += seen_through ? 1 : 0;
@@ -81,6 +82,7 @@ class Clearer {
 
  private:
   Tree& t_;
+  PixelLookup pixels_;
   RangeImage image_;
   Eigen::Matrix3d sensor_R_world_;
   Eigen::Vector3d sensor_from_anchor_;  // anchor - sensor position: stored point + this = sensor-relative, world axes

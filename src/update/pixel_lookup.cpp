@@ -1,0 +1,68 @@
+#include "update/pixel_lookup.hpp"
+
+#include <algorithm>
+
+namespace eco::detail {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// The pseudo-angle of the direction at `degrees` of azimuth, as pixel_of computes it.
+double pseudo_angle(double degrees) {
+  const double x = std::cos(degrees * kPi / 180.0), y = std::sin(degrees * kPi / 180.0);
+  const double d = y / (std::abs(x) + std::abs(y));
+  return x >= 0.0 ? 2.0 + d : (y >= 0.0 ? 4.0 - d : -d);
+}
+
+/// For `bins` equal bins from walls.front(), the last wall at or below each bin's lower end (never the
+/// last two: the one closing the range and the sentinel).
+std::vector<std::uint32_t> starts(const std::vector<double>& walls, std::size_t bins, double per_unit) {
+  std::vector<std::uint32_t> start(bins);
+  std::uint32_t i = 0;
+  for (std::size_t b = 0; b < bins; ++b) {
+    const double lower = walls.front() + double(b) / per_unit;
+    while (i + 3 < walls.size() && walls[i + 1] <= lower) ++i;
+    start[b] = i;
+  }
+  return start;
+}
+
+}  // namespace
+
+PixelLookup::PixelLookup(const SensorModel& sensor)
+    : sensor_(sensor), rows_(sensor.rows()), columns_(sensor.columns()) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < rows_; ++r) {
+    row_walls_.push_back(std::sin((sensor.vertical_fov_min + r * sensor.vertical_resolution) * kPi / 180.0));
+  }
+  fov_top_ = std::sin(sensor.vertical_fov_max * kPi / 180.0);
+  row_walls_.insert(row_walls_.end(), {fov_top_, kInfinity});
+  for (int c = 0; c < columns_; ++c) column_walls_.push_back(pseudo_angle(-180.0 + c * sensor.horizontal_resolution));
+  column_walls_.front() = 0.0;  // -180 deg, whatever sin(-pi) rounds to
+  column_walls_.insert(column_walls_.end(), {4.0, kInfinity});
+  // Bins narrower than the narrowest pixel hold one wall at most. A column spans at least half its
+  // width in radians of pseudo-angle (the slope is 1/2 to 1), so 4 bins a column suffice; a row's
+  // sine span shrinks with cos(elevation): the bins follow its narrowest row, within bounds.
+  column_bins_per_unit_ = double(columns_);
+  column_start_ = starts(column_walls_, 4 * std::size_t(columns_), column_bins_per_unit_);
+  double narrowest = kInfinity;  // of the whole rows (the top one may be a sliver)
+  for (int r = 0; r + 1 < rows_; ++r) narrowest = std::min(narrowest, row_walls_[r + 1] - row_walls_[r]);
+  const double span = fov_top_ - row_walls_.front();
+  const double wanted = std::ceil(2.0 * span / std::max(narrowest, 1e-300));
+  const std::size_t row_bins = std::size_t(std::clamp(wanted, 4.0 * rows_, 16.0 * rows_ + 16.0));
+  row_bins_per_unit_ = double(row_bins) / span;
+  row_start_ = starts(row_walls_, row_bins, row_bins_per_unit_);
+}
+
+std::uint32_t PixelLookup::exact_pixel_of(const Eigen::Vector3d& v, double& range) const {
+  range = v.norm();
+  if (!(range <= sensor_.max_range)) return kOutside;
+  const double elevation = std::atan2(v.z(), std::hypot(v.x(), v.y())) * 180.0 / kPi;
+  if (elevation < sensor_.vertical_fov_min || elevation >= sensor_.vertical_fov_max) return kOutside;
+  const double azimuth = std::atan2(v.y(), v.x()) * 180.0 / kPi;
+  const int row = std::min(rows_ - 1, int((elevation - sensor_.vertical_fov_min) / sensor_.vertical_resolution));
+  const int column = int((azimuth + 180.0) / sensor_.horizontal_resolution) % columns_;
+  return index(row, column);
+}
+
+}  // namespace eco::detail

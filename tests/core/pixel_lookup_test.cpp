@@ -1,0 +1,105 @@
+// PixelLookup's comparisons against the formulas themselves: pixel_of() answers exactly as
+// exact_pixel_of() for points anywhere, on pixel walls and at every distance from them, on the field
+// of view's edges, straight up and down, beyond the range, and in single precision as scans come.
+
+#include "update/pixel_lookup.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace eco::detail {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Sensor-frame points on the walls of `sensor`'s pixels and field of view, and at every distance
+/// from them (1e-14 to 1e-3 degrees either side), in double and rounded to float as scans come.
+std::vector<Eigen::Vector3d> on_walls(const SensorModel& sensor, std::mt19937& rng) {
+  std::uniform_real_distribution<double> range(0.5, 1.2 * sensor.max_range), exponent(-14.0, -3.0);
+  std::uniform_int_distribution<int> column(0, sensor.columns());
+  std::uniform_int_distribution<int> row(-1, sensor.rows() + 1);
+  const auto nudge = [&] { return (rng() % 2 ? 1.0 : -1.0) * std::pow(10.0, exponent(rng)); };
+  std::vector<Eigen::Vector3d> out;
+  for (int i = 0; i < 200000; ++i) {
+    const double azimuth = (-180.0 + column(rng) * sensor.horizontal_resolution + (i % 3 ? nudge() : 0.0)) * kPi / 180;
+    double elevation = sensor.vertical_fov_min + row(rng) * sensor.vertical_resolution + (i % 5 ? nudge() : 0.0);
+    if (i % 7 == 0) elevation = (i % 2 ? sensor.vertical_fov_max : sensor.vertical_fov_min) + (i % 3 ? nudge() : 0.0);
+    elevation = std::clamp(elevation, -90.0, 90.0) * kPi / 180;
+    const double r = range(rng);
+    const Eigen::Vector3d v(r * std::cos(elevation) * std::cos(azimuth), r * std::cos(elevation) * std::sin(azimuth),
+                            r * std::sin(elevation));
+    out.push_back(i % 2 ? v : v.cast<float>().cast<double>());
+  }
+  return out;
+}
+
+TEST(PixelLookup, FastPixelsAreTheFormulasPixels) {
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-120.0, 120.0), tiny(-1e-9, 1e-9);
+  SensorModel odd;  // columns that do not divide the circle, uneven rows
+  odd.horizontal_resolution = 0.7;
+  odd.vertical_resolution = 1.3;
+  odd.vertical_fov_min = -15.0;
+  odd.vertical_fov_max = 15.0;
+  SensorModel poles;  // rows narrowing towards both poles; one column
+  poles.vertical_fov_min = -90.0;
+  poles.vertical_fov_max = 89.95;
+  poles.vertical_resolution = 0.1;
+  poles.horizontal_resolution = 360.0;
+  SensorModel fine;  // a fine image with a sliver of a top row
+  fine.vertical_fov_min = -30.0;
+  fine.vertical_fov_max = 10.001;
+  fine.vertical_resolution = 0.05;
+  fine.horizontal_resolution = 0.01;
+  for (const SensorModel& sensor : {SensorModel{}, odd, poles, fine}) {
+    const PixelLookup lookup(sensor);
+    std::vector<Eigen::Vector3d> points = on_walls(sensor, rng);
+    for (int i = 0; i < 200000; ++i) points.emplace_back(u(rng), u(rng), (i % 2 ? 0.2 : 1.0) * u(rng));
+    for (int i = 0; i < 2000; ++i) points.emplace_back(tiny(rng), tiny(rng), u(rng));  // nearly straight up or down
+    for (const Eigen::Vector3d& v : {Eigen::Vector3d(0, 0, 5), Eigen::Vector3d(0, 0, -5), Eigen::Vector3d(0, 0, 0),
+                                     Eigen::Vector3d(-3, 0, -0.5), Eigen::Vector3d(-3, -0.0, -0.5),
+                                     Eigen::Vector3d(-0.0, 3, -0.5), Eigen::Vector3d(-0.0, -3, -0.5)}) {
+      points.push_back(v);
+    }
+    std::size_t inside = 0;
+    for (const Eigen::Vector3d& v : points) {
+      double fast_range = -1.0, exact_range = -2.0;
+      const std::uint32_t fast = lookup.pixel_of(v, fast_range);
+      const std::uint32_t exact = lookup.exact_pixel_of(v, exact_range);
+      ASSERT_EQ(fast, exact) << v.transpose();  // the same row and column, or both outside
+      ASSERT_EQ(fast_range, exact_range);
+      inside += fast != PixelLookup::kOutside ? 1 : 0;
+    }
+    EXPECT_GT(inside, points.size() / 4);
+  }
+}
+
+/// A very narrow field of view cut into very fine rows: a point below or above it lies billions of
+/// rows away, more than an int holds; the lookup still answers as the formulas do.
+TEST(PixelLookup, PointsFarOutsideANarrowFieldOfViewAreOutside) {
+  SensorModel narrow;
+  narrow.vertical_fov_min = 1.0;
+  narrow.vertical_fov_max = 1.001;
+  narrow.vertical_resolution = 1e-9;  // 1e6 rows: -90 deg is 9.1e10 rows below
+  narrow.horizontal_resolution = 360.0;
+  const PixelLookup lookup(narrow);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-50.0, 50.0);
+  std::size_t inside = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Eigen::Vector3d v(u(rng), u(rng), u(rng));
+    if (i % 4 == 0) v.z() = std::tan(1.0005 * kPi / 180) * std::hypot(v.x(), v.y());  // inside
+    double fast_range = -1.0, exact_range = -2.0;
+    const std::uint32_t fast = lookup.pixel_of(v, fast_range);
+    ASSERT_EQ(fast, lookup.exact_pixel_of(v, exact_range)) << v.transpose();
+    ASSERT_EQ(fast_range, exact_range);
+    inside += fast != PixelLookup::kOutside ? 1 : 0;
+  }
+  EXPECT_GT(inside, 1000u);
+}
+
+}  // namespace
+}  // namespace eco::detail
