@@ -50,18 +50,30 @@ class Clearer {
     return height - spread - slack > sin_fov_max_ * (sin_fov_max_ >= 0.0 ? farthest : nearest);
   }
   void drop(std::uint32_t) {}  // never judged DropAll
-  /// Judges the leaf's points first, and rewrites the leaf only when the scan saw through some:
-  /// most leaves lose nothing.
+  /// Judges the leaf's points first, a group at a time, and rewrites the leaf only when the scan
+  /// saw through some: most leaves lose nothing.
   bool filter_leaf(std::uint32_t id) {
     const Node& n = t_.nodes()[id];
     const PointSpan points = t_.points().span(n.link, n.count);
-    seen_through_.assign(points.size, 0);
-    bool any = false;
-    for (std::uint32_t i = 0; i < points.size; ++i) {
-      seen_through_[i] = cleared({points.x[i], points.y[i], points.z[i]}) ? 1 : 0;
-      any = any || seen_through_[i];
+    seen_through_.resize(points.size);
+    std::size_t seen = 0;
+    PixelLookup::Group group;
+    std::array<std::uint32_t, PixelLookup::kGroup> pixels;
+    std::array<double, PixelLookup::kGroup> ranges;
+    for (std::uint32_t begin = 0; begin < points.size; begin += std::uint32_t(group.size)) {
+      group.size = std::min<std::size_t>(PixelLookup::kGroup, points.size - begin);
+      for (std::size_t i = 0; i < group.size; ++i) {
+        const Eigen::Vector3d v = sensor_frame({points.x[begin + i], points.y[begin + i], points.z[begin + i]});
+        group.x[i] = v.x(), group.y[i] = v.y(), group.z[i] = v.z();
+      }
+      pixels_.pixels_of(group, pixels, ranges);
+      for (std::size_t i = 0; i < group.size; ++i) {
+        seen_through_[begin + i] = seen_through(pixels[i], ranges[i]) ? 1 : 0;
+        seen += seen_through_[begin + i];
+      }
     }
-    if (!any) return false;
+    stats_.cleared += seen;
+    if (seen == 0) return false;
     std::uint32_t i = 0;  // retain() asks in order
     t_.retain(id, [&](const StoredPoint&) { return seen_through_[i++] == 0; });
     return true;
@@ -69,18 +81,26 @@ class Clearer {
 
   /// Whether the scan sees through the held point at stored coordinates `p` (counted).
   bool cleared(const std::array<float, 3>& p) {
-    const Eigen::Vector3d v =
-        sensor_R_world_ * (sensor_from_anchor_ + Eigen::Vector3d(double(p[0]), double(p[1]), double(p[2])));
+    const Eigen::Vector3d v = sensor_frame(p);
     double range = 0.0;
     const std::uint32_t pixel = pixels_.pixel_of(v, range);
-    const double nearest = pixel == PixelLookup::kOutside ? RangeImage::kNoReturn : image_.nearest_around(pixel);
-    // a pixel with no return around it (kNoReturn) is not evidence of free space
-    const bool seen_through = nearest != RangeImage::kNoReturn && nearest > range + margin_;
-    stats_.cleared += seen_through ? 1 : 0;
-    return seen_through;
+    const bool seen = seen_through(pixel, range);
+    stats_.cleared += seen ? 1 : 0;
+    return seen;
   }
 
  private:
+  /// The held point at stored coordinates `p` in the sensor's frame.
+  [[nodiscard]] Eigen::Vector3d sensor_frame(const std::array<float, 3>& p) const {
+    return sensor_R_world_ * (sensor_from_anchor_ + Eigen::Vector3d(double(p[0]), double(p[1]), double(p[2])));
+  }
+  /// Whether the scan sees through a held point at `pixel` (or kOutside), `range` from the sensor:
+  /// a pixel with no return around it (kNoReturn) is not evidence of free space.
+  [[nodiscard]] bool seen_through(std::uint32_t pixel, double range) const {
+    const double nearest = pixel == PixelLookup::kOutside ? RangeImage::kNoReturn : image_.nearest_around(pixel);
+    return nearest != RangeImage::kNoReturn && nearest > range + margin_;
+  }
+
   Tree& t_;
   PixelLookup pixels_;
   RangeImage image_;

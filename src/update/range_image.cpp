@@ -1,6 +1,8 @@
 #include "update/range_image.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 
 namespace eco::detail {
 
@@ -11,15 +13,23 @@ RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<dou
   const std::span<double> nearest(storage.data(), size);  // becomes the 3x3 minimum at the end
   const std::span<double> across(storage.data() + size, size);
   std::fill(nearest.begin(), nearest.end(), kNoReturn);
+  PixelLookup::Group group;
+  std::array<std::uint32_t, PixelLookup::kGroup> pixel;
+  std::array<double, PixelLookup::kGroup> range;
+  const auto bin = [&] {
+    pixels.pixels_of(group, pixel, range);
+    for (std::size_t i = 0; i < group.size; ++i) {
+      if (pixel[i] != PixelLookup::kOutside) nearest[pixel[i]] = std::min(nearest[pixel[i]], range[i]);
+    }
+    group.size = 0;
+  };
   for (std::size_t i = 0; i < scan.count; ++i) {
     const float* p = scan.data + i * scan.stride;
-    const Eigen::Vector3d v(p[0], p[1], p[2]);
-    if (!v.allFinite()) continue;
-    double range = 0.0;
-    if (const std::uint32_t pixel = pixels.pixel_of(v, range); pixel != PixelLookup::kOutside) {
-      nearest[pixel] = std::min(nearest[pixel], range);
-    }
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) continue;
+    group.x[group.size] = p[0], group.y[group.size] = p[1], group.z[group.size] = p[2];
+    if (++group.size == PixelLookup::kGroup) bin();
   }
+  bin();
   // The minimum over 3x3 neighbourhoods, separably: along each row (wrapping), then across rows.
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < columns; ++c) {

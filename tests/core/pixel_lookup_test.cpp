@@ -74,6 +74,22 @@ TEST(PixelLookup, FastPixelsAreTheFormulasPixels) {
       inside += fast != PixelLookup::kOutside ? 1 : 0;
     }
     EXPECT_GT(inside, points.size() / 4);
+    // in groups of every size up to kGroup, each point's pixel and range as one at a time
+    PixelLookup::Group group;
+    std::array<std::uint32_t, PixelLookup::kGroup> pixels{};
+    std::array<double, PixelLookup::kGroup> ranges{};
+    for (std::size_t begin = 0; begin < points.size(); begin += group.size) {
+      group.size = std::min(points.size() - begin, 1 + begin % PixelLookup::kGroup);
+      for (std::size_t i = 0; i < group.size; ++i) {
+        group.x[i] = points[begin + i].x(), group.y[i] = points[begin + i].y(), group.z[i] = points[begin + i].z();
+      }
+      lookup.pixels_of(group, pixels, ranges);
+      for (std::size_t i = 0; i < group.size; ++i) {
+        double range = 0.0;
+        ASSERT_EQ(pixels[i], lookup.exact_pixel_of(points[begin + i], range)) << points[begin + i].transpose();
+        ASSERT_EQ(ranges[i], range);
+      }
+    }
   }
 }
 
