@@ -3,15 +3,27 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace eco::detail {
+namespace {
+
+/// The minimum of each pixel of `row` and its two neighbours along it, the row wrapping around.
+void minimum_along(std::span<const double> row, std::span<double> out) {
+  const std::size_t n = row.size();
+  const auto at = [&](std::size_t c, int step) { return row[(c + n + std::size_t(step)) % n]; };
+  out[0] = std::min({at(0, -1), row[0], at(0, 1)});
+  for (std::size_t c = 1; c + 1 < n; ++c) out[c] = std::min(row[c - 1], std::min(row[c], row[c + 1]));
+  if (n > 1) out[n - 1] = std::min({row[n - 2], row[n - 1], at(n - 1, 1)});
+}
+
+}  // namespace
 
 RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<double>& storage) {
-  const int rows = pixels.rows(), columns = pixels.columns();
-  const std::size_t size = std::size_t(rows) * std::size_t(columns);
-  storage.resize(2 * size);
+  const std::size_t rows = std::size_t(pixels.rows()), columns = std::size_t(pixels.columns());
+  const std::size_t size = rows * columns;
+  storage.resize(size + 3 * columns);
   const std::span<double> nearest(storage.data(), size);  // becomes the 3x3 minimum at the end
-  const std::span<double> across(storage.data() + size, size);
   std::fill(nearest.begin(), nearest.end(), kNoReturn);
   PixelLookup::Group group;
   std::array<std::uint32_t, PixelLookup::kGroup> pixel;
@@ -30,22 +42,24 @@ RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<dou
     if (++group.size == PixelLookup::kGroup) bin();
   }
   bin();
-  // The minimum over 3x3 neighbourhoods, separably: along each row (wrapping), then across rows.
-  for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < columns; ++c) {
-      const int left = c == 0 ? columns - 1 : c - 1;
-      const int right = c + 1 == columns ? 0 : c + 1;
-      across[pixels.index(r, c)] =
-          std::min({nearest[pixels.index(r, left)], nearest[pixels.index(r, c)], nearest[pixels.index(r, right)]});
+  // The minimum over 3x3 neighbourhoods, separably and in place: three rows' minima along them
+  // are kept (the row's, the one above's, the one below's), each computed before its row is
+  // overwritten by the minimum across them.
+  const auto row = [&](std::size_t r) { return nearest.subspan(r * columns, columns); };
+  std::span<double> above(storage.data() + size, columns), here(above.data() + columns, columns),
+      below(here.data() + columns, columns);
+  minimum_along(row(0), here);
+  for (std::size_t r = 0; r < rows; ++r) {
+    if (r + 1 < rows) minimum_along(row(r + 1), below);
+    const std::span<double> out = row(r);
+    for (std::size_t c = 0; c < columns; ++c) {
+      double m = here[c];
+      if (r > 0) m = std::min(m, above[c]);
+      if (r + 1 < rows) m = std::min(m, below[c]);
+      out[c] = m;
     }
-  }
-  for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < columns; ++c) {
-      double m = across[pixels.index(r, c)];
-      if (r > 0) m = std::min(m, across[pixels.index(r - 1, c)]);
-      if (r + 1 < rows) m = std::min(m, across[pixels.index(r + 1, c)]);
-      nearest[pixels.index(r, c)] = m;
-    }
+    std::swap(above, here);  // the rows move up: here becomes above, below becomes here
+    std::swap(here, below);
   }
   around_ = nearest;
 }

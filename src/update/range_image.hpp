@@ -21,8 +21,8 @@ class RangeImage {
   static constexpr double kNoReturn = std::numeric_limits<double>::infinity();
 
   /// Bins every finite return of `scan` (sensor frame) that `pixels` places in the image, in
-  /// `storage` (resized to two images; the caller keeps it between frames, so that no frame pays
-  /// for fresh pages, and while this image is read).
+  /// `storage` (resized to an image and three rows; the caller keeps it between frames, so that
+  /// no frame pays for fresh pages, and while this image is read).
   RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<double>& storage);
 
   /// The nearest return around `pixel` (not kOutside) [m]; kNoReturn when none came back there.
