@@ -2,9 +2,7 @@
 
 #include <algorithm>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include "update/fast_atan2.hpp"
 
 namespace eco::detail {
 namespace {
@@ -60,35 +58,52 @@ PixelLookup::PixelLookup(const SensorModel& sensor)
 
 void PixelLookup::pixels_of(const Group& points, std::array<std::uint32_t, kGroup>& pixels,
                             std::array<double, kGroup>& ranges) const {
-  alignas(16) std::array<float, kGroup> sine, pseudo;
-  std::size_t i = 0;
+  std::uint32_t decided = 0, outside = 0;  // bit i: tier 1 found point i's row and column / saw it outside the field of view
+  alignas(16) std::array<std::int32_t, kGroup> row{}, column{};
 #if defined(__SSE2__)
-  // direction_of<float>, four points at a time: the same single-precision operations
+  const auto set = [](double value) { return _mm_set1_ps(float(value)); };
   const auto floats = [](const double* p) {
     return _mm_movelh_ps(_mm_cvtpd_ps(_mm_load_pd(p)), _mm_cvtpd_ps(_mm_load_pd(p + 2)));
   };
-  const __m128 zero = _mm_setzero_ps(), sign = _mm_set1_ps(-0.0f);
-  for (; i + 4 <= points.size; i += 4) {
+  const SensorModel& s = sensor_;
+  const __m128 fov_min = set(s.vertical_fov_min), low = set(s.vertical_fov_min + kAngleGuard),
+               high = set(s.vertical_fov_max - kAngleGuard), below = set(s.vertical_fov_min - kAngleGuard),
+               above = set(s.vertical_fov_max + kAngleGuard);
+  const __m128 per_row = set(1.0 / s.vertical_resolution), per_column = set(1.0 / s.horizontal_resolution);
+  const __m128 row_guard = set(kAngleGuard / s.vertical_resolution), column_guard = set(kAngleGuard / s.horizontal_resolution);
+  const __m128 row_room = set(1.0 - kAngleGuard / s.vertical_resolution),
+               column_room = set(1.0 - kAngleGuard / s.horizontal_resolution);
+  const __m128 seam = set(360.0 / s.horizontal_resolution - kAngleGuard / s.horizontal_resolution);
+  for (std::size_t i = 0; i < points.size; i += 4) {  // lanes past the size are ignored
     const __m128 x = floats(&points.x[i]), y = floats(&points.y[i]), z = floats(&points.z[i]);
-    const __m128 range = _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z)));
-    const __m128 d = _mm_div_ps(y, _mm_add_ps(_mm_andnot_ps(sign, x), _mm_andnot_ps(sign, y)));
-    const __m128 ahead = _mm_cmpge_ps(x, zero), left = _mm_cmpge_ps(y, zero);  // x >= 0, y >= 0
-    const __m128 behind = _mm_or_ps(_mm_and_ps(left, _mm_sub_ps(_mm_set1_ps(4.0f), d)),
-                                    _mm_andnot_ps(left, _mm_xor_ps(d, sign)));
-    _mm_store_ps(&sine[i], _mm_div_ps(z, range));
-    _mm_store_ps(&pseudo[i], _mm_or_ps(_mm_and_ps(ahead, _mm_add_ps(_mm_set1_ps(2.0f), d)), _mm_andnot_ps(ahead, behind)));
+    const __m128 elevation = fast_atan2_degrees(z, _mm_sqrt_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y))));
+    const __m128 azimuth = fast_atan2_degrees(y, x);
+    const __m128 r = _mm_mul_ps(_mm_sub_ps(elevation, fov_min), per_row);
+    const __m128 c = _mm_mul_ps(_mm_add_ps(azimuth, _mm_set1_ps(180.0f)), per_column);
+    const __m128i r_whole = _mm_cvttps_epi32(r), c_whole = _mm_cvttps_epi32(c);
+    const __m128 r_part = _mm_sub_ps(r, _mm_cvtepi32_ps(r_whole)), c_part = _mm_sub_ps(c, _mm_cvtepi32_ps(c_whole));
+    // every comparison false for NaN (straight up or down): those lanes are left undecided
+    const __m128 in_rows = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(elevation, low), _mm_cmple_ps(elevation, high)),
+                                      _mm_and_ps(_mm_cmpge_ps(r_part, row_guard), _mm_cmple_ps(r_part, row_room)));
+    const __m128 in_columns = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(c, column_guard), _mm_cmple_ps(c, seam)),
+                                         _mm_and_ps(_mm_cmpge_ps(c_part, column_guard), _mm_cmple_ps(c_part, column_room)));
+    decided |= std::uint32_t(_mm_movemask_ps(_mm_and_ps(in_rows, in_columns))) << i;
+    outside |= std::uint32_t(_mm_movemask_ps(_mm_or_ps(_mm_cmplt_ps(elevation, below), _mm_cmpgt_ps(elevation, above)))) << i;
+    _mm_store_si128(reinterpret_cast<__m128i*>(&row[i]), r_whole);
+    _mm_store_si128(reinterpret_cast<__m128i*>(&column[i]), c_whole);
   }
 #endif
-  for (; i < points.size; ++i) {
-    const float x = float(points.x[i]), y = float(points.y[i]), z = float(points.z[i]);
-    const Direction<float> direction = direction_of(x, y, z, std::sqrt(x * x + y * y + z * z));
-    sine[i] = direction.sine;
-    pseudo[i] = direction.pseudo;
-  }
-  for (i = 0; i < points.size; ++i) {
+  for (std::size_t i = 0; i < points.size; ++i) {
     const Eigen::Vector3d v(points.x[i], points.y[i], points.z[i]);
     ranges[i] = v.norm();
-    pixels[i] = decide<float>(v, ranges[i], {sine[i], pseudo[i]});
+    if (!(ranges[i] <= sensor_.max_range) || (outside >> i & 1u) != 0) {
+      pixels[i] = kOutside;
+    } else if ((decided >> i & 1u) != 0) {
+      pixels[i] = index(row[i], column[i]);
+    } else {
+      double range = 0.0;
+      pixels[i] = pixel_of(v, range);
+    }
   }
 }
 

@@ -1,15 +1,18 @@
 #pragma once
-// The pixel of a sensor-frame point in the sensor's range image (SensorModel's formulas), found by
-// comparisons rather than arctangents: free-space clearing looks one up for every return and every
-// held point in range, and the two arctangents were most of that lookup.
+// The pixel of a sensor-frame point in the sensor's range image (SensorModel's formulas), exactly
+// as the formulas give it and much faster: free-space clearing looks one up for every return and
+// every held point in range. Three tiers, each deciding only where its error cannot matter:
 //
-// Elevation and azimuth are replaced by quantities that grow with them and cost a division each:
-// the sine of the elevation, z / |v|, and a pseudo-angle of the azimuth, 0 at -180 deg rising
-// through 1, 2, 3 at -90, 0, 90 deg to 4 at 180 deg (y / (|x| + |y|), shifted by quadrant).
-// Each pixel wall is mapped into these once; a coarse table gives the wall just below a value and
-// one comparison the next. Both maps have slope at most 1 per radian, so a value farther from
-// every wall than its error (kGuard) lies on the same side of each wall as the angle the formulas
-// compute; nearer, a more precise computation decides.
+// 1. Groups of points, four at a time in single precision (SSE2): elevation and azimuth by a
+//    polynomial arctangent (src/update/fast_atan2.hpp), row and column by truncation, wherever
+//    both angles lie farther than kAngleGuard from every wall.
+// 2. One point in double, without arctangents: the elevation replaced by its sine, z / |v|, and
+//    the azimuth by a pseudo-angle that rises with it, 0 at -180 deg through 1, 2, 3 at -90, 0,
+//    90 deg to 4 at 180 deg (y / (|x| + |y|), shifted by quadrant). Each wall is mapped into these
+//    once; a coarse table gives the wall just below a value and one comparison the next. Both maps
+//    have slope at most 1 per radian, so a value farther than kGuard from every wall lies on the
+//    formulas' side of each.
+// 3. The formulas themselves, with libm's atan2 (exact_pixel_of).
 
 #include <eco/config.hpp>
 
@@ -32,15 +35,25 @@ class PixelLookup {
   explicit PixelLookup(const SensorModel& sensor);
 
   /// The pixel (row * columns + column) of the sensor-frame point `v`, or kOutside; `range` gets
-  /// |v|. Exactly exact_pixel_of(), faster.
+  /// |v|. Exactly exact_pixel_of(), faster (tier 2, then 3).
   [[nodiscard]] std::uint32_t pixel_of(const Eigen::Vector3d& v, double& range) const {
     range = v.norm();
-    return decide(v, range, direction_of(v.x(), v.y(), v.z(), range));
+    if (!(range <= sensor_.max_range)) return kOutside;
+    if (v.x() == 0.0 && v.y() == 0.0) return exact_pixel_of(v);  // straight up or down, or the origin
+    const double sine = v.z() / range;
+    if (!(sine >= row_walls_.front() + kGuard && sine <= fov_top_ - kGuard)) {
+      const bool outside = sine < row_walls_.front() - kGuard || sine > fov_top_ + kGuard;
+      return outside ? kOutside : exact_pixel_of(v);  // clearly outside, or at the edge
+    }
+    const double d = v.y() / (std::abs(v.x()) + std::abs(v.y()));  // in [-1, 1], rising with the angle in each half-plane
+    const double pseudo = v.x() >= 0.0 ? 2.0 + d : (v.y() >= 0.0 ? 4.0 - d : -d);
+    const int row = between(row_walls_, row_start_, (sine - row_walls_.front()) * row_bins_per_unit_, sine);
+    const int column = between(column_walls_, column_start_, pseudo * column_bins_per_unit_, pseudo);
+    if ((row < 0) | (column < 0)) return exact_pixel_of(v);  // within kGuard of a wall
+    return index(row, column);
   }
 
-  /// pixel_of for a group of points: their directions first, four at a time in single precision
-  /// where the processor has vectors of four floats, then the walls; a point that single precision
-  /// leaves undecided is looked up alone.
+  /// pixel_of for a group of points (tier 1, then 2 and 3 for the points it leaves).
   static constexpr std::size_t kGroup = 16;
   struct Group {
     std::size_t size = 0;  // at most kGroup
@@ -62,61 +75,25 @@ class PixelLookup {
     return std::uint32_t(row) * std::uint32_t(columns_) + std::uint32_t(column);
   }
 
+  /// [deg] How far tier 1's angles must lie from a wall: above their error (fast_atan2's, and the
+  /// rounding of the rows' and columns' arithmetic in single precision, below 2e-5 deg more),
+  /// far below a pixel (HDL-64E: 0.42 x 0.2 deg).
+  static constexpr double kAngleGuard = 2e-4;
+
  private:
-  /// A point's sine of elevation and pseudo-angle, computed in Real.
-  template <typename Real>
-  struct Direction {
-    Real sine;    // z / |v|
-    Real pseudo;  // in [0, 4]
-  };
-  template <typename Real>
-  [[nodiscard]] static Direction<Real> direction_of(Real x, Real y, Real z, Real range) {
-    const Real d = y / (std::abs(x) + std::abs(y));  // in [-1, 1], rising with the angle in each half-plane
-    return {z / range, x >= Real(0) ? Real(2) + d : (y >= Real(0) ? Real(4) - d : -d)};
-  }
+  /// How far tier 2's values must lie from a wall: above their error (a few units of 1e-16) and
+  /// the formulas' (~1e-13 rad), far below a pixel (HDL-64E: 7e-3 of sine, 2e-3 of pseudo-angle).
+  static constexpr double kGuard = 1e-9;
 
-  /// How far a direction's value must lie from a wall to decide on which side of it the formulas'
-  /// angle lies: above its error and the formulas' (~1e-13 rad), far below a pixel (HDL-64E: 7e-3
-  /// of sine, 2e-3 of pseudo-angle). In double, the error is a few units of 1e-16; in single
-  /// precision below 6 * 2^-24 = 3.6e-7 for the sine and 8 * 2^-24 = 4.8e-7 for the pseudo-angle,
-  /// counting the rounding of v to float (tests/core/pixel_lookup_test.cpp fails at 1e-7).
-  template <typename Real>
-  static constexpr double kGuard = sizeof(Real) == sizeof(double) ? 1e-9 : 2e-6;
-
-  /// The pixel of `v` from |v| and its direction; where Real leaves it undecided, double decides,
-  /// and where double does, the formulas.
-  template <typename Real>
-  [[nodiscard]] std::uint32_t decide(const Eigen::Vector3d& v, double range, Direction<Real> direction) const {
-    constexpr double guard = kGuard<Real>;
-    const auto undecided = [&] {
-      if constexpr (sizeof(Real) == sizeof(double)) {
-        return exact_pixel_of(v);
-      } else {
-        return decide(v, range, direction_of(v.x(), v.y(), v.z(), range));
-      }
-    };
-    const double sine = direction.sine, pseudo = direction.pseudo;
-    if (!(range <= sensor_.max_range)) return kOutside;
-    if (v.x() == 0.0 && v.y() == 0.0) return exact_pixel_of(v);  // straight up or down, or the origin
-    if (!(sine >= row_walls_.front() + guard && sine <= fov_top_ - guard)) {
-      const bool outside = sine < row_walls_.front() - guard || sine > fov_top_ + guard;
-      return outside ? kOutside : undecided();  // clearly outside, or at the edge
-    }
-    const int row = between(row_walls_, row_start_, (sine - row_walls_.front()) * row_bins_per_unit_, sine, guard);
-    const int column = between(column_walls_, column_start_, pseudo * column_bins_per_unit_, pseudo, guard);
-    if ((row < 0) | (column < 0)) return undecided();  // within the guard of a wall
-    return index(row, column);
-  }
-
-  /// The i with walls[i] + guard <= value < walls[i + 1] - guard, or -1 when the value lies within
-  /// the guard of a wall (or the table's guess is off by more than one wall: a bin holding two).
+  /// The i with walls[i] + kGuard <= value < walls[i + 1] - kGuard, or -1 when the value lies within
+  /// kGuard of a wall (or the table's guess is off by more than one wall: a bin holding two).
   /// `bin` >= 0 is the value's position in start's bins (the last takes all beyond).
   [[nodiscard]] static int between(const std::vector<double>& walls, const std::vector<std::uint32_t>& start,
-                                   double bin, double value, double guard) {
+                                   double bin, double value) {
     const std::size_t b = std::min(std::size_t(bin), start.size() - 1);
     std::uint32_t i = start[b];
     i += value >= walls[i + 1] ? 1 : 0;
-    const bool clear = (value - walls[i] >= guard) & (walls[i + 1] - value > guard);
+    const bool clear = (value - walls[i] >= kGuard) & (walls[i + 1] - value > kGuard);
     return clear ? int(i) : -1;
   }
 
