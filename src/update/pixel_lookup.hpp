@@ -81,9 +81,11 @@ class PixelLookup {
   static constexpr double kAngleGuard = 2e-4;
 
  private:
-  /// How far tier 2's values must lie from a wall: above their error (a few units of 1e-16) and
-  /// the formulas' (~1e-13 rad), far below a pixel (HDL-64E: 7e-3 of sine, 2e-3 of pseudo-angle).
-  static constexpr double kGuard = 1e-9;
+  /// How far tier 2's values must lie from a wall: above their error and the walls' (each a few
+  /// units of 1e-16) and the formulas' (atan2 within an ulp, the degrees' arithmetic within
+  /// 3e-14 deg: below 1e-15 rad), far below a pixel (HDL-64E: 7e-3 of sine, 2e-3 of
+  /// pseudo-angle). The test passes at 1e-14 and fails at 0.
+  static constexpr double kGuard = 1e-12;
 
   /// The i with walls[i] + kGuard <= value < walls[i + 1] - kGuard, or -1 when the value lies within
   /// kGuard of a wall (or the table's guess is off by more than one wall: a bin holding two).
