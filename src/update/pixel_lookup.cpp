@@ -75,6 +75,10 @@ void PixelLookup::pixels_of(const Group& points, std::array<std::uint32_t, kGrou
                column_room = set(1.0 - kAngleGuard / s.horizontal_resolution);
   const __m128 seam = set(360.0 / s.horizontal_resolution - kAngleGuard / s.horizontal_resolution);
   for (std::size_t i = 0; i < points.size; i += 4) {  // lanes past the size are ignored
+    for (std::size_t pair = i; pair < i + 4; pair += 2) {  // |v| in double, as Eigen's norm(): (x^2 + y^2) + z^2
+      const __m128d x = _mm_load_pd(&points.x[pair]), y = _mm_load_pd(&points.y[pair]), z = _mm_load_pd(&points.z[pair]);
+      _mm_storeu_pd(&ranges[pair], _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(x, x), _mm_mul_pd(y, y)), _mm_mul_pd(z, z))));
+    }
     const __m128 x = floats(&points.x[i]), y = floats(&points.y[i]), z = floats(&points.z[i]);
     const __m128 elevation = fast_atan2_degrees(z, _mm_sqrt_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y))));
     const __m128 azimuth = fast_atan2_degrees(y, x);
@@ -92,17 +96,17 @@ void PixelLookup::pixels_of(const Group& points, std::array<std::uint32_t, kGrou
     _mm_store_si128(reinterpret_cast<__m128i*>(&row[i]), r_whole);
     _mm_store_si128(reinterpret_cast<__m128i*>(&column[i]), c_whole);
   }
+#else
+  for (std::size_t i = 0; i < points.size; ++i) ranges[i] = Eigen::Vector3d(points.x[i], points.y[i], points.z[i]).norm();
 #endif
   for (std::size_t i = 0; i < points.size; ++i) {
-    const Eigen::Vector3d v(points.x[i], points.y[i], points.z[i]);
-    ranges[i] = v.norm();
     if (!(ranges[i] <= sensor_.max_range) || (outside >> i & 1u) != 0) {
       pixels[i] = kOutside;
     } else if ((decided >> i & 1u) != 0) {
       pixels[i] = index(row[i], column[i]);
     } else {
       double range = 0.0;
-      pixels[i] = pixel_of(v, range);
+      pixels[i] = pixel_of({points.x[i], points.y[i], points.z[i]}, range);
     }
   }
 }
