@@ -31,6 +31,38 @@ std::vector<std::uint32_t> starts(const std::vector<double>& walls, std::size_t 
 
 }  // namespace
 
+// A clone for processors with AVX2 (eight lanes) beside the baseline's (four, SSE2), chosen when the
+// program loads (GCC on x86-64).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define ECO_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ECO_VECTOR_CLONES
+#endif
+
+/// Tier 1 for a whole group (every lane; those past its size are ignored): written lane by lane
+/// without a branch so that the compiler makes vector code of it (this file is compiled with
+/// -fno-math-errno -fno-trapping-math, and -ffp-contract=off so that |v| is rounded as Eigen's
+/// norm() rounds it: (x^2 + y^2) + z^2). Every comparison is false for NaN (a point straight up or
+/// down, or the origin), which leaves it undecided.
+ECO_VECTOR_CLONES
+void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, FirstTier& found,
+                             std::array<double, kGroup>& ranges) {
+  for (std::size_t i = 0; i < kGroup; ++i) {
+    const double dx = points.x[i], dy = points.y[i], dz = points.z[i];
+    ranges[i] = std::sqrt((dx * dx + dy * dy) + dz * dz);
+    const float x = float(dx), y = float(dy), z = float(dz);
+    const float elevation = fast_atan2_degrees(z, std::sqrt(x * x + y * y)), azimuth = fast_atan2_degrees(y, x);
+    const float r = (elevation - w.fov_min) * w.per_row, c = (azimuth + 180.0f) * w.per_column;
+    const std::int32_t r_whole = std::int32_t(r), c_whole = std::int32_t(c);
+    const float r_part = r - float(r_whole), c_part = c - float(c_whole);
+    found.row[i] = r_whole;
+    found.column[i] = c_whole;
+    found.decided[i] = (elevation >= w.low) & (elevation <= w.high) & (r_part >= w.row_guard) & (r_part <= w.row_room) &
+                       (c >= w.column_guard) & (c <= w.seam) & (c_part >= w.column_guard) & (c_part <= w.column_room);
+    found.outside[i] = (elevation < w.below) | (elevation > w.above);
+  }
+}
+
 PixelLookup::PixelLookup(const SensorModel& sensor)
     : sensor_(sensor), rows_(sensor.rows()), columns_(sensor.columns()) {
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -54,56 +86,23 @@ PixelLookup::PixelLookup(const SensorModel& sensor)
   const std::size_t row_bins = std::size_t(std::clamp(wanted, 4.0 * rows_, 16.0 * rows_ + 16.0));
   row_bins_per_unit_ = double(row_bins) / span;
   row_start_ = starts(row_walls_, row_bins, row_bins_per_unit_);
+  const auto f = [](double value) { return float(value); };
+  const double min = sensor.vertical_fov_min, max = sensor.vertical_fov_max;
+  const double rows_guard = kAngleGuard / sensor.vertical_resolution, columns_guard = kAngleGuard / sensor.horizontal_resolution;
+  fast_ = {f(min), f(min + kAngleGuard), f(max - kAngleGuard), f(min - kAngleGuard), f(max + kAngleGuard),
+           f(1.0 / sensor.vertical_resolution), f(1.0 / sensor.horizontal_resolution), f(rows_guard), f(1.0 - rows_guard),
+           f(columns_guard), f(1.0 - columns_guard), f(360.0 / sensor.horizontal_resolution - columns_guard)};
 }
 
 void PixelLookup::pixels_of(const Group& points, std::array<std::uint32_t, kGroup>& pixels,
                             std::array<double, kGroup>& ranges) const {
-  std::uint32_t decided = 0, outside = 0;  // bit i: tier 1 found point i's row and column / saw it outside the field of view
-  alignas(16) std::array<std::int32_t, kGroup> row{}, column{};
-#if defined(__SSE2__)
-  const auto set = [](double value) { return _mm_set1_ps(float(value)); };
-  const auto floats = [](const double* p) {
-    return _mm_movelh_ps(_mm_cvtpd_ps(_mm_load_pd(p)), _mm_cvtpd_ps(_mm_load_pd(p + 2)));
-  };
-  const SensorModel& s = sensor_;
-  const __m128 fov_min = set(s.vertical_fov_min), low = set(s.vertical_fov_min + kAngleGuard),
-               high = set(s.vertical_fov_max - kAngleGuard), below = set(s.vertical_fov_min - kAngleGuard),
-               above = set(s.vertical_fov_max + kAngleGuard);
-  const __m128 per_row = set(1.0 / s.vertical_resolution), per_column = set(1.0 / s.horizontal_resolution);
-  const __m128 row_guard = set(kAngleGuard / s.vertical_resolution), column_guard = set(kAngleGuard / s.horizontal_resolution);
-  const __m128 row_room = set(1.0 - kAngleGuard / s.vertical_resolution),
-               column_room = set(1.0 - kAngleGuard / s.horizontal_resolution);
-  const __m128 seam = set(360.0 / s.horizontal_resolution - kAngleGuard / s.horizontal_resolution);
-  for (std::size_t i = 0; i < points.size; i += 4) {  // lanes past the size are ignored
-    for (std::size_t pair = i; pair < i + 4; pair += 2) {  // |v| in double, as Eigen's norm(): (x^2 + y^2) + z^2
-      const __m128d x = _mm_load_pd(&points.x[pair]), y = _mm_load_pd(&points.y[pair]), z = _mm_load_pd(&points.z[pair]);
-      _mm_storeu_pd(&ranges[pair], _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(x, x), _mm_mul_pd(y, y)), _mm_mul_pd(z, z))));
-    }
-    const __m128 x = floats(&points.x[i]), y = floats(&points.y[i]), z = floats(&points.z[i]);
-    const __m128 elevation = fast_atan2_degrees(z, _mm_sqrt_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y))));
-    const __m128 azimuth = fast_atan2_degrees(y, x);
-    const __m128 r = _mm_mul_ps(_mm_sub_ps(elevation, fov_min), per_row);
-    const __m128 c = _mm_mul_ps(_mm_add_ps(azimuth, _mm_set1_ps(180.0f)), per_column);
-    const __m128i r_whole = _mm_cvttps_epi32(r), c_whole = _mm_cvttps_epi32(c);
-    const __m128 r_part = _mm_sub_ps(r, _mm_cvtepi32_ps(r_whole)), c_part = _mm_sub_ps(c, _mm_cvtepi32_ps(c_whole));
-    // every comparison false for NaN (straight up or down): those lanes are left undecided
-    const __m128 in_rows = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(elevation, low), _mm_cmple_ps(elevation, high)),
-                                      _mm_and_ps(_mm_cmpge_ps(r_part, row_guard), _mm_cmple_ps(r_part, row_room)));
-    const __m128 in_columns = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(c, column_guard), _mm_cmple_ps(c, seam)),
-                                         _mm_and_ps(_mm_cmpge_ps(c_part, column_guard), _mm_cmple_ps(c_part, column_room)));
-    decided |= std::uint32_t(_mm_movemask_ps(_mm_and_ps(in_rows, in_columns))) << i;
-    outside |= std::uint32_t(_mm_movemask_ps(_mm_or_ps(_mm_cmplt_ps(elevation, below), _mm_cmpgt_ps(elevation, above)))) << i;
-    _mm_store_si128(reinterpret_cast<__m128i*>(&row[i]), r_whole);
-    _mm_store_si128(reinterpret_cast<__m128i*>(&column[i]), c_whole);
-  }
-#else
-  for (std::size_t i = 0; i < points.size; ++i) ranges[i] = Eigen::Vector3d(points.x[i], points.y[i], points.z[i]).norm();
-#endif
+  FirstTier found;
+  first_tier(points, fast_, found, ranges);
   for (std::size_t i = 0; i < points.size; ++i) {
-    if (!(ranges[i] <= sensor_.max_range) || (outside >> i & 1u) != 0) {
+    if (!(ranges[i] <= sensor_.max_range) || found.outside[i] != 0) {
       pixels[i] = kOutside;
-    } else if ((decided >> i & 1u) != 0) {
-      pixels[i] = index(row[i], column[i]);
+    } else if (found.decided[i] != 0) {
+      pixels[i] = index(found.row[i], found.column[i]);
     } else {
       double range = 0.0;
       pixels[i] = pixel_of({points.x[i], points.y[i], points.z[i]}, range);

@@ -99,7 +99,22 @@ class PixelLookup {
     return clear ? int(i) : -1;
   }
 
+  /// Tier 1's walls and guards in single precision [deg, and rows or columns].
+  struct FirstTierWalls {
+    float fov_min, low, high, below, above;  // the field of view's bottom, and it and its top with the guard inside and outside
+    float per_row, per_column;
+    float row_guard, row_room, column_guard, column_room;  // the guard in rows and columns, and 1 - it
+    float seam;                                            // 360 deg in columns, less the guard
+  };
+  /// Tier 1's verdicts: per point, its row and column where decided, or whether it lies outside.
+  struct FirstTier {
+    alignas(32) std::array<std::int32_t, kGroup> row, column, decided, outside;
+  };
+  static void first_tier(const Group& points, const FirstTierWalls& walls, FirstTier& found,
+                         std::array<double, kGroup>& ranges);
+
   SensorModel sensor_;
+  FirstTierWalls fast_{};
   int rows_ = 0, columns_ = 0;
   // sin(elevation) of each row's lower wall, then of the field of view's top, then +infinity
   std::vector<double> row_walls_;
