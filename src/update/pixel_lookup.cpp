@@ -39,13 +39,13 @@ std::vector<std::uint32_t> starts(const std::vector<double>& walls, std::size_t 
 #define ECO_VECTOR_CLONES
 #endif
 
-/// Tier 1 for a whole group (every lane; those past its size are ignored): written lane by lane
-/// without a branch so that the compiler makes vector code of it (this file is compiled with
-/// -fno-math-errno -fno-trapping-math, and -ffp-contract=off so that |v| is rounded as Eigen's
-/// norm() rounds it: (x^2 + y^2) + z^2). Every comparison is false for NaN (a point straight up or
-/// down, or the origin), which leaves it undecided.
+/// Tier 1 for a whole group (every lane; those past its size are ignored): each point's pixel,
+/// kOutside, or kUndecided. Written lane by lane without a branch so that the compiler makes vector
+/// code of it (this file is compiled with -fno-math-errno -fno-trapping-math, and -ffp-contract=off
+/// so that |v| is rounded as Eigen's norm() rounds it: (x^2 + y^2) + z^2). Every comparison is
+/// false for NaN (a point straight up or down, or the origin), which leaves it undecided.
 ECO_VECTOR_CLONES
-void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, FirstTier& found,
+void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, std::array<std::uint32_t, kGroup>& pixels,
                              std::array<double, kGroup>& ranges) {
   for (std::size_t i = 0; i < kGroup; ++i) {
     const double dx = points.x[i], dy = points.y[i], dz = points.z[i];
@@ -53,13 +53,15 @@ void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, First
     const float x = float(dx), y = float(dy), z = float(dz);
     const float elevation = fast_atan2_degrees(z, std::sqrt(x * x + y * y)), azimuth = fast_atan2_degrees(y, x);
     const float r = (elevation - w.fov_min) * w.per_row, c = (azimuth + 180.0f) * w.per_column;
-    const std::int32_t r_whole = std::int32_t(r), c_whole = std::int32_t(c);
-    const float r_part = r - float(r_whole), c_part = c - float(c_whole);
-    found.row[i] = r_whole;
-    found.column[i] = c_whole;
-    found.decided[i] = (elevation >= w.low) & (elevation <= w.high) & (r_part >= w.row_guard) & (r_part <= w.row_room) &
-                       (c >= w.column_guard) & (c <= w.seam) & (c_part >= w.column_guard) & (c_part <= w.column_room);
-    found.outside[i] = (elevation < w.below) | (elevation > w.above);
+    const std::int32_t row = std::int32_t(r), column = std::int32_t(c);
+    const float r_part = r - float(row), c_part = c - float(column);
+    const std::uint32_t decided = (elevation >= w.low) & (elevation <= w.high) & (r_part >= w.row_guard) &
+                         (r_part <= w.row_room) & (c >= w.column_guard) & (c <= w.seam) & (c_part >= w.column_guard) &
+                         (c_part <= w.column_room);
+    const std::uint32_t outside = (ranges[i] > w.max_range) | (elevation < w.below) | (elevation > w.above);
+    const std::uint32_t pixel = std::uint32_t(row) * w.columns + std::uint32_t(column);
+    // kOutside where outside (all ones), else the pixel where decided, else kUndecided
+    pixels[i] = (0u - outside) | ((0u - decided) & pixel) | ((decided - 1u) & kUndecided);
   }
 }
 
@@ -91,19 +93,15 @@ PixelLookup::PixelLookup(const SensorModel& sensor)
   const double rows_guard = kAngleGuard / sensor.vertical_resolution, columns_guard = kAngleGuard / sensor.horizontal_resolution;
   fast_ = {f(min), f(min + kAngleGuard), f(max - kAngleGuard), f(min - kAngleGuard), f(max + kAngleGuard),
            f(1.0 / sensor.vertical_resolution), f(1.0 / sensor.horizontal_resolution), f(rows_guard), f(1.0 - rows_guard),
-           f(columns_guard), f(1.0 - columns_guard), f(360.0 / sensor.horizontal_resolution - columns_guard)};
+           f(columns_guard), f(1.0 - columns_guard), f(360.0 / sensor.horizontal_resolution - columns_guard),
+           std::uint32_t(columns_), sensor.max_range};
 }
 
 void PixelLookup::pixels_of(const Group& points, std::array<std::uint32_t, kGroup>& pixels,
                             std::array<double, kGroup>& ranges) const {
-  FirstTier found;
-  first_tier(points, fast_, found, ranges);
+  first_tier(points, fast_, pixels, ranges);
   for (std::size_t i = 0; i < points.size; ++i) {
-    if (!(ranges[i] <= sensor_.max_range) || found.outside[i] != 0) {
-      pixels[i] = kOutside;
-    } else if (found.decided[i] != 0) {
-      pixels[i] = index(found.row[i], found.column[i]);
-    } else {
+    if (pixels[i] == kUndecided) {
       double range = 0.0;
       pixels[i] = pixel_of({points.x[i], points.y[i], points.z[i]}, range);
     }

@@ -105,12 +105,12 @@ class PixelLookup {
     float per_row, per_column;
     float row_guard, row_room, column_guard, column_room;  // the guard in rows and columns, and 1 - it
     float seam;                                            // 360 deg in columns, less the guard
+    std::uint32_t columns;
+    double max_range;
   };
-  /// Tier 1's verdicts: per point, its row and column where decided, or whether it lies outside.
-  struct FirstTier {
-    alignas(32) std::array<std::int32_t, kGroup> row, column, decided, outside;
-  };
-  static void first_tier(const Group& points, const FirstTierWalls& walls, FirstTier& found,
+  /// Tier 1's verdict on a point it leaves to tiers 2 and 3 (no pixel has this index: kMaxPixels).
+  static constexpr std::uint32_t kUndecided = kOutside - 1;
+  static void first_tier(const Group& points, const FirstTierWalls& walls, std::array<std::uint32_t, kGroup>& pixels,
                          std::array<double, kGroup>& ranges);
 
   SensorModel sensor_;
