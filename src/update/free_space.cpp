@@ -57,7 +57,7 @@ class Clearer {
     const PointSpan points = t_.points().span(n.link, n.count);
     seen_through_.resize(points.size);
     std::size_t seen = 0;
-    PixelLookup::Group group;
+    PixelLookup::Group& group = group_;
     std::array<std::uint32_t, PixelLookup::kGroup> pixels;
     std::array<double, PixelLookup::kGroup> ranges;
     for (std::uint32_t begin = 0; begin < points.size; begin += std::uint32_t(group.size)) {
@@ -112,6 +112,7 @@ class Clearer {
   double max_range_ = 0.0;
   UpdateStats& stats_;
   std::vector<char> seen_through_;  // filter_leaf's verdicts, per point of the leaf
+  PixelLookup::Group group_;        // filter_leaf's, kept: zeroing a group for every leaf cost more than its use
 };
 
 }  // namespace

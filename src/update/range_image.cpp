@@ -35,9 +35,8 @@ RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<dou
     }
     group.size = 0;
   };
-  for (std::size_t i = 0; i < scan.count; ++i) {
+  for (std::size_t i = 0; i < scan.count; ++i) {  // a return with a non-finite coordinate has no pixel
     const float* p = scan.data + i * scan.stride;
-    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) continue;
     group.x[group.size] = p[0], group.y[group.size] = p[1], group.z[group.size] = p[2];
     if (++group.size == PixelLookup::kGroup) bin();
   }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 namespace eco::detail {
@@ -24,6 +25,10 @@ TEST(RangeImage, NearestAroundIsTheMinimumOverThe3x3Neighbourhood) {
   for (int i = 0; i < 3000; ++i) {
     const double a = azimuth(rng), e = elevation(rng) * kPi / 180, r = range(rng);
     scan.insert(scan.end(), {float(r * std::cos(e) * std::cos(a)), float(r * std::cos(e) * std::sin(a)), float(r * std::sin(e))});
+    if (i % 500 == 0) {  // returns with a non-finite coordinate bin nowhere
+      scan.insert(scan.end(), {std::numeric_limits<float>::quiet_NaN(), 1.0f, 1.0f});
+      scan.insert(scan.end(), {1.0f, std::numeric_limits<float>::infinity(), 1.0f});
+    }
   }
   std::vector<double> storage;
   const PixelLookup pixels(sensor);
