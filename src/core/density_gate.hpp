@@ -21,11 +21,19 @@ namespace eco::detail {
 /// that the group stays in L1.
 inline constexpr std::size_t kDensityGroup = 64;
 
+/// The keys of the cells of points[0, n) (n <= kDensityGroup) where WorldGrid::index's guess is
+/// sure, in vector code (core/vector_clones.hpp); unsure[i] = 1 where it is not (a point within
+/// 2^-12 of a wall, or far out), whose key is then left to WorldGrid::index.
+void guess_cell_keys(const WorldGrid& grid, const std::array<float, 3>* points, std::size_t n, std::uint64_t* keys,
+                     std::uint8_t* unsure);
+
 /// Finds the cells of points[0, n) (their keys) and starts loading their slots.
 inline void find_cells(const CellCounts& counts, const WorldGrid& grid, const std::array<float, 3>* points,
                        std::uint64_t* keys, std::size_t n) {
+  std::array<std::uint8_t, kDensityGroup> unsure;
+  guess_cell_keys(grid, points, n, keys, unsure.data());
   for (std::size_t i = 0; i < n; ++i) {
-    keys[i] = CellCounts::key(grid.index(points[i]));
+    if (unsure[i] != 0) keys[i] = CellCounts::key(grid.index(points[i]));
     counts.prefetch(keys[i]);
   }
 }

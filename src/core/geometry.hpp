@@ -51,6 +51,17 @@ class WorldGrid {
     }
   }
 
+  /// What index() computes with, per axis, for vector code that makes the same guesses
+  /// (core/density_gate.cpp): a guess is sure where its fraction lies in (kSure, 1 - kSure) and
+  /// |cells| below fast_below.
+  struct Axis {
+    double origin, base, fast_below;
+  };
+  [[nodiscard]] Axis axis(int a) const { return {origin_[a], base_[a], fast_below_[a]}; }
+  [[nodiscard]] double inverse() const { return inverse_; }
+  static constexpr double kSure = 0x1p-12;  // a guess this far inside its cell needs no walls
+  static constexpr double kReach = 0x1p30;  // cells either side of the origin's guessed at once
+
   [[nodiscard]] std::array<std::int64_t, 3> index(const std::array<float, 3>& stored) const {
     return {index(0, stored[0]), index(1, stored[1]), index(2, stored[2])};
   }
@@ -68,9 +79,7 @@ class WorldGrid {
   }
 
  private:
-  static constexpr double kReach = 0x1p31;      // cells either side of the origin's guessed at once
-  static constexpr double kSure = 0x1p-12;      // a guess this far inside its cell needs no walls
-  static constexpr double kFastCells = 0x1p34;  // ... when the point and the origin lie within this
+  static constexpr double kFastCells = 0x1p34;  // kSure's guess needs no walls when the point and the origin lie within this
 
   std::array<double, 3> origin_;
   std::array<double, 3> base_{};

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/vector_clones.hpp"
 #include "update/fast_atan2.hpp"
 
 namespace eco::detail {
@@ -31,19 +32,10 @@ std::vector<std::uint32_t> starts(const std::vector<double>& walls, std::size_t 
 
 }  // namespace
 
-// A clone for processors with AVX2 (eight lanes) beside the baseline's (four, SSE2), chosen when the
-// program loads (GCC on x86-64).
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define ECO_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define ECO_VECTOR_CLONES
-#endif
-
 /// Tier 1 for a whole group (every lane; those past its size are ignored): each point's pixel,
-/// kOutside, or kUndecided. Written lane by lane without a branch so that the compiler makes vector
-/// code of it (this file is compiled with -fno-math-errno -fno-trapping-math, and -ffp-contract=off
-/// so that |v| is rounded as Eigen's norm() rounds it: (x^2 + y^2) + z^2). Every comparison is
-/// false for NaN (a point straight up or down, or the origin), which leaves it undecided.
+/// kOutside, or kUndecided, in vector code (core/vector_clones.hpp; |v| rounded as Eigen's norm()
+/// rounds it: (x^2 + y^2) + z^2). Every comparison is false for NaN (a point straight up or down,
+/// or the origin), which leaves it undecided.
 ECO_VECTOR_CLONES
 void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, std::array<std::uint32_t, kGroup>& pixels,
                              std::array<double, kGroup>& ranges) {

@@ -2,11 +2,15 @@
 // the rule applied one point after another with a std::map of counts: the same points pass, in
 // the same order, for streams shorter than, equal to and longer than a group, with cells already
 // partly full, and the counts it leaves are the map's. forget_in_groups leaves the map's counts too.
+// The cells' keys guessed in vector code are WorldGrid's, on walls and off them, near the world's
+// origin and far from it.
 
 #include "core/density_gate.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <vector>
@@ -18,6 +22,66 @@ struct Offered {
   int id;
   std::array<float, 3> p;
 };
+
+/// A coordinate on a wall of `grid`'s axis near f (the first float at or above it), or the float
+/// before it, or f itself.
+float near_wall(const WorldGrid& grid, int axis, double size, float f, int choice) {
+  const double origin = grid.axis(axis).origin;
+  const double wall = std::floor((origin + f) / size) * size - origin;
+  float at = float(wall);
+  if (double(at) < wall) at = std::nextafter(at, std::numeric_limits<float>::infinity());
+  return choice == 0 ? f : choice == 1 ? at : std::nextafter(at, -std::numeric_limits<float>::infinity());
+}
+
+TEST(DensityGate, GuessedKeysAreTheGridsKeys) {
+  struct Case {
+    std::array<double, 3> origin;
+    double size;
+    double reach;
+    bool mostly_sure;
+  };
+  const std::vector<Case> cases{{{0.0, 0.0, 0.0}, 0.1, 30.0, true},
+                                {{-10.3, 5.1, 0.7}, 0.2, 30.0, true},
+                                {{4.0e6, -3.5e6, 1.0e5}, 0.05, 60.0, true},
+                                {{123.456, -0.001, 7.0}, 1e-3, 20.0, true},
+                                {{500.0, -500.0, 0.0}, 1e-9, 100.0, false}};  // ~1e11 cells out: beyond kReach
+  std::mt19937 rng(17);
+  for (const Case& c : cases) {
+    const WorldGrid grid(c.origin, c.size);
+    std::uniform_real_distribution<double> u(-c.reach, c.reach);
+    std::uniform_int_distribution<int> choice(0, 2);
+    std::vector<std::array<float, 3>> points;
+    for (int i = 0; i < 20000; ++i) {
+      std::array<float, 3> p{};
+      for (int a = 0; a < 3; ++a) p[a] = near_wall(grid, a, c.size, float(u(rng)), choice(rng));
+      points.push_back(p);
+    }
+    std::size_t sure = 0;
+    std::array<std::uint64_t, kDensityGroup> keys{};
+    std::array<std::uint8_t, kDensityGroup> unsure{};
+    for (std::size_t begin = 0; begin < points.size();) {
+      const std::size_t n = std::min(points.size() - begin, 1 + begin % kDensityGroup);
+      guess_cell_keys(grid, &points[begin], n, keys.data(), unsure.data());
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::array<float, 3>& p = points[begin + i];
+        if (unsure[i] == 0) {
+          ASSERT_EQ(keys[i], CellCounts::key(grid.index(p))) << p[0] << " " << p[1] << " " << p[2] << ", size " << c.size;
+          ++sure;
+        }
+      }
+      CellCounts counts;
+      find_cells(counts, grid, &points[begin], keys.data(), n);
+      for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(keys[i], CellCounts::key(grid.index(points[begin + i])));
+      begin += n;
+    }
+    // two thirds of the coordinates lie on a wall or a float below it: those are left unsure
+    if (c.mostly_sure) {
+      EXPECT_GT(sure, points.size() / 40) << "size " << c.size;  // the fully random points at least
+    } else {
+      EXPECT_EQ(sure, 0u);
+    }
+  }
+}
 
 TEST(DensityGate, PassesWhatTheRuleOneByOnePassesInOrder) {
   const WorldGrid grid({12.5, -3.25, 0.75}, 0.2);

@@ -1,0 +1,36 @@
+#include "core/density_gate.hpp"
+
+#include "core/vector_clones.hpp"
+
+namespace eco::detail {
+
+ECO_VECTOR_CLONES
+void guess_cell_keys(const WorldGrid& grid, const std::array<float, 3>* points, std::size_t n, std::uint64_t* keys,
+                     std::uint8_t* unsure) {
+  constexpr std::uint32_t kMask = (1u << CellCounts::kAxisBits) - 1;
+  const double inverse = grid.inverse();
+  const std::array<WorldGrid::Axis, 3> axes{grid.axis(0), grid.axis(1), grid.axis(2)};
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint64_t key = 0;
+    std::uint32_t sure = 1;
+    for (int a = 0; a < 3; ++a) {
+      // WorldGrid::index's guess: the count of cells above the base truncated (within kReach of
+      // the origin's cell it lies in (0, 2^31), where an int32 holds it), its low bits added to
+      // the base's (a key keeps kAxisBits of each index)
+      const double cells = (axes[a].origin + double(points[i][a])) * inverse;
+      const double above = cells - axes[a].base;
+      const std::uint32_t held = (above >= 0.0) & (above < 0x1p31);
+      const double counted = held != 0 ? above : 0.0;
+      const std::int32_t whole = std::int32_t(counted);
+      const double fraction = counted - double(whole);
+      sure &= held & (fraction > WorldGrid::kSure) & (fraction < 1.0 - WorldGrid::kSure) &
+              (std::abs(cells) < axes[a].fast_below);
+      const std::uint32_t low = std::uint32_t(whole) + std::uint32_t(std::int64_t(axes[a].base));
+      key |= std::uint64_t(low & kMask) << (a * CellCounts::kAxisBits);
+    }
+    keys[i] = key;
+    unsure[i] = std::uint8_t(1 - sure);
+  }
+}
+
+}  // namespace eco::detail

@@ -1,0 +1,13 @@
+#pragma once
+// Loops written lane by lane without branches, for the compiler to turn into vector code, get a
+// clone for processors with AVX2 (eight float or four double lanes) beside the baseline's (SSE2),
+// chosen when the program loads (GCC on x86-64; elsewhere the baseline's alone). The files that
+// hold them are compiled with -fno-math-errno -fno-trapping-math (CMakeLists.txt), without which
+// GCC keeps such loops scalar, and -ffp-contract=off, so that no fused multiply-add rounds
+// otherwise than the scalar code the results must equal.
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define ECO_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ECO_VECTOR_CLONES
+#endif
