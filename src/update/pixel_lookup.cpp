@@ -10,11 +10,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// The pseudo-angle of the direction at `degrees` of azimuth, as pixel_of computes it.
-double pseudo_angle(double degrees) {
-  const double x = std::cos(degrees * kPi / 180.0), y = std::sin(degrees * kPi / 180.0);
-  const double d = y / (std::abs(x) + std::abs(y));
-  return x >= 0.0 ? 2.0 + d : (y >= 0.0 ? 4.0 - d : -d);
+/// The pseudo-angle of the direction at `degrees` of azimuth (a wall's).
+double pseudo_angle_at(double degrees) {
+  return PixelLookup::pseudo_angle(std::cos(degrees * kPi / 180.0), std::sin(degrees * kPi / 180.0));
 }
 
 /// For `bins` equal bins from walls.front(), the last wall at or below each bin's lower end (never the
@@ -44,7 +42,10 @@ void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, std::
     ranges[i] = std::sqrt((dx * dx + dy * dy) + dz * dz);
     const float x = float(dx), y = float(dy), z = float(dz);
     const float elevation = fast_atan2_degrees(z, std::sqrt(x * x + y * y)), azimuth = fast_atan2_degrees(y, x);
-    const float r = (elevation - w.fov_min) * w.per_row, c = (azimuth + 180.0f) * w.per_column;
+    // rows and columns counted from the field of view's bottom and from -180 deg, held where an
+    // int32 holds them (outside, or NaN, they become 0 or 2^30, which no test below lets through)
+    const auto count = [](float value) { return std::min(0x1p30f, std::max(0.0f, value)); };  // NaN: 0
+    const float r = count((elevation - w.fov_min) * w.per_row), c = count((azimuth + 180.0f) * w.per_column);
     const std::int32_t row = std::int32_t(r), column = std::int32_t(c);
     const float r_part = r - float(row), c_part = c - float(column);
     const std::uint32_t decided = (elevation >= w.low) & (elevation <= w.high) & (r_part >= w.row_guard) &
@@ -65,7 +66,7 @@ PixelLookup::PixelLookup(const SensorModel& sensor)
   }
   fov_top_ = std::sin(sensor.vertical_fov_max * kPi / 180.0);
   row_walls_.insert(row_walls_.end(), {fov_top_, kInfinity});
-  for (int c = 0; c < columns_; ++c) column_walls_.push_back(pseudo_angle(-180.0 + c * sensor.horizontal_resolution));
+  for (int c = 0; c < columns_; ++c) column_walls_.push_back(pseudo_angle_at(-180.0 + c * sensor.horizontal_resolution));
   column_walls_.front() = 0.0;  // -180 deg, whatever sin(-pi) rounds to
   column_walls_.insert(column_walls_.end(), {4.0, kInfinity});
   // Bins narrower than the narrowest pixel hold one wall at most. A column spans at least half its
