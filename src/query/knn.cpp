@@ -2,6 +2,7 @@
 // the current k-th distance — first by the cell (from the lattice walls: no child read), then by
 // the child's tight bounds.
 
+#include "query/distances.hpp"
 #include "query/frames.hpp"
 #include "query/queries.hpp"
 
@@ -97,6 +98,7 @@ class KnnSearch {
 
  private:
   static constexpr std::size_t kMaxPath = 64;  // nodes from the root down: more than Config's deepest level
+  static constexpr std::uint32_t kDistances = 32;  // a leaf's points measured at a time (Config's default capacity)
 
   /// The squared distance from the query to the nearest wall of `cell`, from inside (0 outside).
   [[nodiscard]] double inside_gap(const detail::Cell& cell) const {
@@ -128,12 +130,13 @@ class KnnSearch {
     const detail::Node& n = t_.nodes()[id];
     if (n.leaf) {
       const detail::PointSpan c = t_.points().span(n.link, n.count);
-      for (std::uint32_t i = 0; i < c.size; ++i) {
-        const double dx = double(c.x[i]) - q_[0];
-        const double dy = double(c.y[i]) - q_[1];
-        const double dz = double(c.z[i]) - q_[2];
-        const double d2 = dx * dx + dy * dy + dz * dz;
-        if (d2 < worst()) offer(d2, c, i);
+      std::array<double, kDistances> d2;
+      for (std::uint32_t begin = 0; begin < c.size; begin += kDistances) {
+        const std::uint32_t m = std::min<std::uint32_t>(kDistances, c.size - begin);
+        detail::squared_distances(c.x + begin, c.y + begin, c.z + begin, m, q_, d2.data());
+        for (std::uint32_t i = 0; i < m; ++i) {
+          if (d2[i] < worst()) offer(d2[i], c, begin + i);
+        }
       }
       return;
     }
