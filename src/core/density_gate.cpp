@@ -10,13 +10,15 @@ void guess_cell_keys(const WorldGrid& grid, const std::array<float, 3>* points, 
   constexpr std::uint32_t kMask = (1u << CellCounts::kAxisBits) - 1;
   const double inverse = grid.inverse();
   const std::array<WorldGrid::Axis, 3> axes{grid.axis(0), grid.axis(1), grid.axis(2)};
+  std::array<std::uint32_t, 3> base_low{};  // the bases' low bits: a key keeps kAxisBits of each index
+  for (int a = 0; a < 3; ++a) base_low[std::size_t(a)] = std::uint32_t(std::int64_t(axes[std::size_t(a)].base));
   for (std::size_t i = 0; i < n; ++i) {
     std::uint64_t key = 0;
     std::uint32_t sure = 1;
     for (int a = 0; a < 3; ++a) {
       // WorldGrid::index's guess: the count of cells above the base truncated (within kReach of
       // the origin's cell it lies in (0, 2^31), where an int32 holds it), its low bits added to
-      // the base's (a key keeps kAxisBits of each index)
+      // the base's
       const double cells = (axes[a].origin + double(points[i][a])) * inverse;
       const double above = cells - axes[a].base;
       const std::uint32_t held = (above >= 0.0) & (above < 0x1p31);
@@ -25,7 +27,7 @@ void guess_cell_keys(const WorldGrid& grid, const std::array<float, 3>* points, 
       const double fraction = counted - double(whole);
       sure &= held & (fraction > WorldGrid::kSure) & (fraction < 1.0 - WorldGrid::kSure) &
               (std::abs(cells) < axes[a].fast_below);
-      const std::uint32_t low = std::uint32_t(whole) + std::uint32_t(std::int64_t(axes[a].base));
+      const std::uint32_t low = std::uint32_t(whole) + base_low[std::size_t(a)];
       key |= std::uint64_t(low & kMask) << (a * CellCounts::kAxisBits);
     }
     keys[i] = key;

@@ -60,6 +60,7 @@ void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, std::
 
 PixelLookup::PixelLookup(const SensorModel& sensor)
     : sensor_(sensor), rows_(sensor.rows()), columns_(sensor.columns()) {
+  static_assert(kAngleGuard > 2 * kFastAtan2Error, "tier 1's guard must cover its arctangent's error");
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   for (int r = 0; r < rows_; ++r) {
     row_walls_.push_back(std::sin((sensor.vertical_fov_min + r * sensor.vertical_resolution) * kPi / 180.0));

@@ -116,6 +116,8 @@ class PixelLookup {
   };
   /// Tier 1's verdict on a point it leaves to tiers 2 and 3 (no pixel has this index: kMaxPixels).
   static constexpr std::uint32_t kUndecided = kOutside - 1;
+  /// Static, its walls handed in: a member's fields could alias the outputs for all the compiler
+  /// knows, and it would not vectorise the loop.
   static void first_tier(const Group& points, const FirstTierWalls& walls, std::array<std::uint32_t, kGroup>& pixels,
                          std::array<double, kGroup>& ranges);
 
