@@ -11,10 +11,50 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 
 namespace eco::detail {
+
+/// Scan points judged together by admit_group: its loops run in vector code over them.
+inline constexpr std::size_t kAdmitGroup = 64;
+
+/// A Box as the stored floats it holds: lo <= p <= hi in float is exactly Box::contains(p) for
+/// every float p (lo the least float not below the box's lo, hi the greatest float it holds). The
+/// default holds nothing.
+struct FloatBox {
+  std::array<float, 3> lo{1, 1, 1}, hi{0, 0, 0};
+  static FloatBox of(const Box& b);
+};
+
+/// What admit_group needs of a frame, as plain numbers.
+struct AdmissionFrame {
+  std::array<std::array<double, 3>, 3> rotation{};  // world_R_sensor, by rows
+  std::array<double, 3> translation{};              // the sensor's world position
+  std::array<double, 3> anchor{};                   // the precision origin
+  FloatBox box;                                     // Box(p_t), anchor frame
+  FloatBox previous;                                // Box(p_{t-1}) under ShiftInOnly, else empty
+};
+
+/// One group's verdicts: the admitted points' stored coordinates and scan indices, in scan
+/// order, and how many were refused for what.
+struct AdmittedGroup {
+  std::array<std::array<float, 3>, kAdmitGroup> points;
+  std::array<std::uint32_t, kAdmitGroup> index;
+  std::size_t size = 0;
+  std::size_t nonfinite = 0;
+  std::size_t refused = 0;
+};
+
+/// Judges scan points [begin, begin + n) (n <= kAdmitGroup) in vector code
+/// (core/vector_clones.hpp). A point's stored coordinates are exactly the scalar formula's:
+/// world = R·s + t in double, summed as Eigen sums a 3×3 product (tests/core/admission_test.cpp),
+/// minus the anchor, rounded once to float; it is admitted when they lie in the box and not in
+/// the previous one.
+void admit_group(const AdmissionFrame& frame, ScanView scan, std::size_t begin, std::size_t n, AdmittedGroup& out);
 
 struct Admission {
   Eigen::Isometry3d pose;    // world_T_sensor
@@ -22,65 +62,31 @@ struct Admission {
   Box box;                   // Box(p_t), anchor frame
   std::optional<Box> previous;  // set under ShiftInOnly once a previous box exists
 
-  /// Calls take(stored coordinates, scan index) for each admitted scan point; counts the refused
-  /// ones in `stats`.
-  ///
-  /// Most points of a frame are decided by a float test in the ego frame (rotation only), which
-  /// is exact for points farther than kMargin from every face of both boxes; the rest take the
-  /// exact path: world coordinates in double, rounded once to the stored float, box tests on
-  /// those.
+  /// Calls take(stored coordinates, scan index) for each admitted scan point, in scan order;
+  /// counts the refused ones in `stats`.
   template <class Take>
   void for_each(ScanView scan, UpdateStats& stats, Take&& take) const {
-    const Eigen::Matrix3d rotation = pose.linear();
-    const Eigen::Matrix3f rotation_f = rotation.cast<float>();
-    const Eigen::Vector3d centre = pose.translation() - anchor;  // the sensor, anchor frame
-    const QuickBox outside = QuickBox::around(box, centre, -kMargin);  // beyond it: refused
-    const QuickBox inside = QuickBox::around(box, centre, kMargin);    // within it: in the box
-    const QuickBox seen = previous ? QuickBox::around(*previous, centre, kMargin) : QuickBox{};
-    for (std::size_t i = 0; i < scan.count; ++i) {
-      const Eigen::Vector3f sensor = scan[i];
-      if (!sensor.allFinite()) {
-        ++stats.skipped_nonfinite;
-        continue;
-      }
-      const Eigen::Vector3f ego = rotation_f * sensor;
-      if (!outside.holds(ego) || (previous && inside.holds(ego) && seen.holds(ego))) {
-        ++stats.skipped_by_policy;
-        continue;
-      }
-      // world - anchor, rounded once to float: exactly what to_stored() gives
-      const Eigen::Vector3d world = rotation * sensor.cast<double>() + pose.translation();
-      const std::array<float, 3> p{float(world[0] - anchor[0]), float(world[1] - anchor[1]),
-                                   float(world[2] - anchor[2])};
-      if (!box.contains(p[0], p[1], p[2]) || (previous && previous->contains(p[0], p[1], p[2]))) {
-        ++stats.skipped_by_policy;
-        continue;
-      }
-      take(p, i);
+    const AdmissionFrame f = frame();
+    AdmittedGroup group;
+    for (std::size_t begin = 0; begin < scan.count; begin += kAdmitGroup) {
+      admit_group(f, scan, begin, std::min(kAdmitGroup, scan.count - begin), group);
+      stats.skipped_nonfinite += group.nonfinite;
+      stats.skipped_by_policy += group.refused;
+      for (std::size_t j = 0; j < group.size; ++j) take(group.points[j], std::size_t(group.index[j]));
     }
   }
 
- private:
-  /// [m] far beyond the float error of the quick test (points within 120 m: ~1e-5 m) and of
-  /// the stored coordinates (within 4 km of the precision origin: ~2.5e-4 m).
-  static constexpr double kMargin = 0.01;
-
-  /// A box in the ego frame (world axes, origin at the sensor), shrunk by `margin` per face
-  /// (grown when negative); an empty QuickBox holds nothing.
-  struct QuickBox {
-    std::array<float, 3> lo{1, 1, 1}, hi{0, 0, 0};
-    static QuickBox around(const Box& b, const Eigen::Vector3d& centre, double margin) {
-      QuickBox q;
-      for (int a = 0; a < 3; ++a) {
-        q.lo[a] = float(b.lo[a] - centre[a] + margin);
-        q.hi[a] = float(b.hi[a] - centre[a] - margin);
-      }
-      return q;
+  [[nodiscard]] AdmissionFrame frame() const {
+    AdmissionFrame f;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) f.rotation[std::size_t(r)][std::size_t(c)] = pose.linear()(r, c);
+      f.translation[std::size_t(r)] = pose.translation()[r];
+      f.anchor[std::size_t(r)] = anchor[r];
     }
-    [[nodiscard]] bool holds(const Eigen::Vector3f& e) const {
-      return e[0] >= lo[0] && e[0] < hi[0] && e[1] >= lo[1] && e[1] < hi[1] && e[2] >= lo[2] && e[2] < hi[2];
-    }
-  };
+    f.box = FloatBox::of(box);
+    if (previous) f.previous = FloatBox::of(*previous);
+    return f;
+  }
 };
 
 /// The scan points the insert policy admits for `motion`: R_in = Box(p_t) minus Box(p_{t-1})
