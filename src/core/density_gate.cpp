@@ -4,7 +4,7 @@
 
 namespace eco::detail {
 
-ECO_VECTOR_CLONES
+ECO_WIDE_VECTOR_CLONES
 void guess_cell_keys(const WorldGrid& grid, const std::array<float, 3>* points, std::size_t n, std::uint64_t* keys,
                      std::uint8_t* unsure) {
   constexpr std::uint32_t kMask = (1u << CellCounts::kAxisBits) - 1;

@@ -6,8 +6,15 @@
 // GCC keeps such loops scalar, and -ffp-contract=off, so that no fused multiply-add rounds
 // otherwise than the scalar code the results must equal.
 
+//
+// ECO_WIDE_VECTOR_CLONES adds a clone for AVX-512 (x86-64-v4: eight double lanes), for loops whose
+// arithmetic is in double, where it measured faster than AVX2 (docs/benchmarks.md); for float
+// loops it did not.
+
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #define ECO_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#define ECO_WIDE_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
 #else
 #define ECO_VECTOR_CLONES
+#define ECO_WIDE_VECTOR_CLONES
 #endif

@@ -72,7 +72,7 @@ template <std::size_t kStride>
 
 }  // namespace
 
-ECO_VECTOR_CLONES
+ECO_WIDE_VECTOR_CLONES
 void admit_group(const AdmissionFrame& frame, ScanView scan, std::size_t begin, std::size_t n, AdmittedGroup& out) {
   switch (scan.stride) {
     case 3: return admit_lanes<3>(frame, scan, begin, n, out);
