@@ -42,6 +42,28 @@ class CellCounts {
     return true;
   }
 
+  /// add_below(keys[i], limit) for i in [0, n), in order; passed[i] says whether it counted.
+  /// Room for n new cells is made first, so the loop tests no load per key.
+  void add_below_each(const std::uint64_t* keys, std::size_t n, std::uint32_t limit, std::uint8_t* passed) {
+    while (4 * (used_ + n) > 3 * slots_.size()) grow();
+    std::uint64_t* const slots = slots_.data();
+    const std::size_t last = slots_.size() - 1;
+    std::size_t used = used_;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint64_t key = keys[k];
+      std::size_t i = home(key);
+      while (count_of(slots[i]) != 0 && key_of(slots[i]) != key) i = (i + 1) & last;
+      const std::uint32_t count = count_of(slots[i]);
+      const bool counted = count < limit;
+      passed[k] = std::uint8_t(counted);
+      if (counted) {
+        slots[i] = count == 0 ? key << kCountBits | 1u : slots[i] + 1;
+        used += count == 0;
+      }
+    }
+    used_ = used;
+  }
+
   /// Starts loading the slot where `key`'s probe begins (a hint: no effect on the counts).
   void prefetch(std::uint64_t key) const {
     if (!slots_.empty()) __builtin_prefetch(&slots_[home(key)]);

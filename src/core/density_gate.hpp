@@ -47,11 +47,13 @@ std::size_t pass_density_cap(CellCounts& counts, const WorldGrid& grid, std::uin
   std::array<Item, kDensityGroup> items;
   std::array<std::array<float, 3>, kDensityGroup> points;
   std::array<std::uint64_t, kDensityGroup> keys{};
+  std::array<std::uint8_t, kDensityGroup> passed{};
   std::size_t held = 0, refused = 0;
   const auto judge = [&] {
     find_cells(counts, grid, points.data(), keys.data(), held);
+    counts.add_below_each(keys.data(), held, limit, passed.data());
     for (std::size_t i = 0; i < held; ++i) {
-      if (counts.add_below(keys[i], limit)) {
+      if (passed[i] != 0) {
         pass(items[i]);
       } else {
         ++refused;

@@ -1,5 +1,6 @@
 // CellCounts, the density cap's per-cell counts, against a std::map: random adds, capped adds
-// and removals (which shift later members of a probe run back), through several growths.
+// and removals (which shift later members of a probe run back), through several growths; and the
+// group form of the capped add, key after key as the map counts them.
 
 #include "core/cell_counts.hpp"
 
@@ -7,6 +8,7 @@
 
 #include <map>
 #include <random>
+#include <vector>
 
 namespace eco::detail {
 namespace {
@@ -42,6 +44,40 @@ TEST(CellCounts, MatchesAMapThroughAddsCapsRemovalsAndGrowth) {
   EXPECT_EQ(seen, expected.size());
   counts.remove(CellCounts::key({1000, 1000, 1000}));  // a cell holding nothing: no effect
   EXPECT_EQ(counts.cells(), expected.size());
+}
+
+TEST(CellCounts, GroupedAddsAreTheMapsKeyAfterKey) {
+  CellCounts counts;
+  std::map<std::uint64_t, std::uint32_t> expected;
+  std::mt19937_64 rng(8);
+  std::uniform_int_distribution<std::int64_t> cell(-30, 30);
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint8_t> passed;
+  for (int group = 0; group < 3000; ++group) {
+    const std::size_t n = std::size_t(rng() % 130);  // empty groups too; growth inside a group
+    const std::uint32_t limit = std::uint32_t(rng() % 4);
+    keys.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      // runs of one cell as well as scattered cells: a key repeats within its group
+      keys.push_back(i > 0 && rng() % 3 == 0 ? keys.back() : CellCounts::key({cell(rng), cell(rng), cell(rng) / 6}));
+    }
+    passed.assign(n + 1, 7);
+    counts.add_below_each(keys.data(), n, limit, passed.data());
+    for (std::size_t i = 0; i < n; ++i) {
+      std::uint32_t& had = expected[keys[i]];
+      ASSERT_EQ(passed[i], had < limit ? 1 : 0) << "group " << group << ", key " << i;
+      if (had < limit) ++had;
+      if (had == 0) expected.erase(keys[i]);
+    }
+    ASSERT_EQ(passed[n], 7) << "wrote past the group";
+    if (group % 7 == 0 && !expected.empty()) {  // removals between groups shift probe runs back
+      const std::uint64_t key = expected.begin()->first;
+      counts.remove(key);
+      if (--expected[key] == 0) expected.erase(key);
+    }
+  }
+  ASSERT_EQ(counts.cells(), expected.size());
+  for (const auto& [key, n] : expected) ASSERT_EQ(counts.count(key), n);
 }
 
 TEST(CellCounts, KeysWrapModulo2To18PerAxis) {
