@@ -55,11 +55,14 @@ class FlatFrame {
   /// (counted in the cap's cells), in scan order: ECO's shift-in, without the tree.
   template <class Take>
   void take_in(ScanView scan, Step& step, Take&& take) {
-    const auto admitted = [&](auto&& offer) {
-      step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p, std::size_t) { offer(p, p); });
-    };
-    step.stats.skipped_by_density +=
-        detail::pass_density_cap<std::array<float, 3>>(density_, density_grid_, cfg_.density_cap, admitted, take);
+    step.admission.for_each_group(scan, step.stats, [&](const detail::AdmittedGroup& group) {
+      std::array<std::uint8_t, detail::kAdmitGroup> passed;
+      step.stats.skipped_by_density +=
+          detail::judge_group(density_, density_grid_, cfg_.density_cap, group.points.data(), group.size, passed.data());
+      for (std::size_t j = 0; j < group.size; ++j) {
+        if (passed[j] != 0) take(group.points[j]);
+      }
+    });
   }
   /// Counts a held point (after the origin moved) or forgets one that left.
   void count(const std::array<float, 3>& p) {

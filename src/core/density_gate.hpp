@@ -11,6 +11,7 @@
 
 #include <eco/config.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -38,47 +39,28 @@ inline void find_cells(const CellCounts& counts, const WorldGrid& grid, const st
   }
 }
 
-/// Calls produce(offer); each offer(item, p) hands an item whose point is p (stored
-/// coordinates). Calls pass(item) for each item, in the order offered, whose cell in `grid` held
-/// fewer than `limit` points (counting it there); returns how many it refused.
-template <class Item, class Produce, class Pass>
-std::size_t pass_density_cap(CellCounts& counts, const WorldGrid& grid, std::uint32_t limit, Produce&& produce,
-                             Pass&& pass) {
-  std::array<Item, kDensityGroup> items;
-  std::array<std::array<float, 3>, kDensityGroup> points;
-  std::array<std::uint64_t, kDensityGroup> keys{};
-  std::array<std::uint8_t, kDensityGroup> passed{};
-  std::size_t held = 0, refused = 0;
-  const auto judge = [&] {
-    find_cells(counts, grid, points.data(), keys.data(), held);
-    counts.add_below_each(keys.data(), held, limit, passed.data());
-    for (std::size_t i = 0; i < held; ++i) {
-      if (passed[i] != 0) {
-        pass(items[i]);
-      } else {
-        ++refused;
-      }
-    }
-    held = 0;
-  };
-  produce([&](const Item& item, const std::array<float, 3>& p) {
-    items[held] = item;
-    points[held] = p;
-    if (++held == kDensityGroup) judge();
-  });
-  judge();
-  return refused;
+/// The density cap's verdicts on points[0, n) (stored coordinates, n <= kDensityGroup), in their
+/// order (the first points to reach a full cell are the ones kept): passed[i] = 1 when point i's
+/// cell in `grid` held fewer than `limit` points, and it is counted there. Returns how many it
+/// refused.
+inline std::size_t judge_group(CellCounts& counts, const WorldGrid& grid, std::uint32_t limit,
+                               const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed) {
+  std::array<std::uint64_t, kDensityGroup> keys;
+  find_cells(counts, grid, points, keys.data(), n);
+  counts.add_below_each(keys.data(), n, limit, passed);
+  std::size_t taken = 0;
+  for (std::size_t i = 0; i < n; ++i) taken += passed[i];
+  return n - taken;
 }
 
-/// pass_density_cap under `cap`, or, when the cap is off, pass(item) for every item offered.
-template <class Item, class Produce, class Pass>
-std::size_t pass_density_cap(CellCounts& counts, const WorldGrid& grid, const DensityCap& cap, Produce&& produce,
-                             Pass&& pass) {
+/// judge_group under `cap`; while the cap is off every point passes, counted nowhere.
+inline std::size_t judge_group(CellCounts& counts, const WorldGrid& grid, const DensityCap& cap,
+                               const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed) {
   if (!cap.enabled()) {
-    produce([&](const Item& item, const std::array<float, 3>&) { pass(item); });
+    std::fill(passed, passed + n, std::uint8_t{1});
     return 0;
   }
-  return pass_density_cap<Item>(counts, grid, cap.max_points, produce, pass);
+  return judge_group(counts, grid, cap.max_points, points, n, passed);
 }
 
 /// Calls produce(offer); each offer(p) hands the stored coordinates of a point that leaves, and

@@ -134,13 +134,11 @@ class Tree {
   /// Points per batch of insert_collected: large enough that a batch shares the walk down to most
   /// start nodes, small enough that its buffers (two copies, 28 B a point each) stay under 2 MB.
   static constexpr std::size_t kInsertChunk = std::size_t(1) << 15;
-  /// The density cap over new points: calls produce(offer), where offer(item, p) hands an item
-  /// whose point is p, and pass(item) for each item whose density cell holds fewer points than
-  /// the cap (counting it there; every item while the cap is off), in the order offered. Returns
-  /// how many it refused.
-  template <class Item, class Produce, class Pass>
-  std::size_t pass_density_cap(Produce&& produce, Pass&& pass) {
-    return detail::pass_density_cap<Item>(density_, density_grid_, cfg_.density_cap, produce, pass);
+  /// The density cap's verdicts on new points[0, n) (n <= kDensityGroup), in their order:
+  /// passed[i] = 1 when point i's cell holds fewer points than the cap (it is counted there;
+  /// every point passes while the cap is off). Returns how many it refused.
+  std::size_t judge_density(const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed) {
+    return judge_group(density_, density_grid_, cfg_.density_cap, points, n, passed);
   }
   /// Working memory for free-space clearing's range image (src/update/range_image.hpp), kept so
   /// that no frame pays for fresh pages; counted in bytes().

@@ -62,18 +62,27 @@ struct Admission {
   Box box;                   // Box(p_t), anchor frame
   std::optional<Box> previous;  // set under ShiftInOnly once a previous box exists
 
-  /// Calls take(stored coordinates, scan index) for each admitted scan point, in scan order;
-  /// counts the refused ones in `stats`.
-  template <class Take>
-  void for_each(ScanView scan, UpdateStats& stats, Take&& take) const {
+  /// Calls take_group(AdmittedGroup&) for each group of scan points that admits some, in scan
+  /// order (the group may be changed: it is the caller's until the next call); counts the
+  /// refused points in `stats`.
+  template <class TakeGroup>
+  void for_each_group(ScanView scan, UpdateStats& stats, TakeGroup&& take_group) const {
     const AdmissionFrame f = frame();
     AdmittedGroup group;
     for (std::size_t begin = 0; begin < scan.count; begin += kAdmitGroup) {
       admit_group(f, scan, begin, std::min(kAdmitGroup, scan.count - begin), group);
       stats.skipped_nonfinite += group.nonfinite;
       stats.skipped_by_policy += group.refused;
-      for (std::size_t j = 0; j < group.size; ++j) take(group.points[j], std::size_t(group.index[j]));
+      if (group.size > 0) take_group(group);
     }
+  }
+  /// Calls take(stored coordinates, scan index) for each admitted scan point, in scan order;
+  /// counts the refused ones in `stats`.
+  template <class Take>
+  void for_each(ScanView scan, UpdateStats& stats, Take&& take) const {
+    for_each_group(scan, stats, [&](const AdmittedGroup& group) {
+      for (std::size_t j = 0; j < group.size; ++j) take(group.points[j], std::size_t(group.index[j]));
+    });
   }
 
   [[nodiscard]] AdmissionFrame frame() const {

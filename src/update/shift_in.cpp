@@ -40,39 +40,43 @@ void reinsert(Tree& tree, std::vector<StoredPoint>& points, UpdateStats& stats) 
 
 namespace {
 
-/// A scan point the policy admits: its stored coordinates and its index in the scan.
-struct Candidate {
-  std::array<float, 3> p;
-  std::uint32_t index;
-};
+/// Takes out of `group` the points older than the age limit already (their times), keeping the
+/// others' order; returns how many.
+template <class Stored>
+std::size_t drop_aged(const Tree& tree, AdmittedGroup& group, const Stored& stored) {
+  std::size_t kept = 0;
+  for (std::size_t j = 0; j < group.size; ++j) {
+    if (tree.age_key(stored(group.points[j], group.index[j])) < tree.age_cutoff()) continue;
+    group.points[kept] = group.points[j];
+    group.index[kept] = group.index[j];
+    ++kept;
+  }
+  const std::size_t dropped = group.size - kept;
+  group.size = kept;
+  return dropped;
+}
 
 }  // namespace
 
 void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats) {
+  static_assert(kAdmitGroup <= kDensityGroup, "an admitted group is judged whole");
   const Columns& kept = tree.points().columns();
   const std::uint32_t stamp = kept.stamps ? motion.frame : 0;
   const bool timed_age = tree.config().max_age_seconds > 0.0;
-  const auto stored = [&](const Candidate& c) {
-    const std::uint32_t i = c.index;
-    return StoredPoint{c.p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
+  const auto stored = [&](const std::array<float, 3>& p, std::uint32_t i) {
+    return StoredPoint{p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
                        kept.times ? float(scan.times[i] - motion.clock.origin) : 0.0f};
   };
-  // offer(candidate, coordinates) for each scan point the policy admits, in scan order
-  const auto admitted = [&](auto&& offer) {
-    admission(motion, tree.config().insert_policy)
-        .for_each(scan, stats, [&](const std::array<float, 3>& p, std::size_t i) {
-          const Candidate c{p, std::uint32_t(i)};
-          if (timed_age && tree.age_key(stored(c)) < tree.age_cutoff()) {  // older than the limit already
-            ++stats.skipped_by_age;
-            return;
-          }
-          offer(c, p);
-        });
-  };
   stats.inserted = tree.insert_collected([&](auto&& insert) {
-    // in scan order: the first points to reach a full cell are the ones kept
-    stats.skipped_by_density +=
-        tree.pass_density_cap<Candidate>(admitted, [&](const Candidate& c) { insert(stored(c)); });
+    admission(motion, tree.config().insert_policy).for_each_group(scan, stats, [&](AdmittedGroup& group) {
+      if (timed_age) stats.skipped_by_age += drop_aged(tree, group, stored);
+      // in scan order: the first points to reach a full cell are the ones kept
+      std::array<std::uint8_t, kAdmitGroup> passed;
+      stats.skipped_by_density += tree.judge_density(group.points.data(), group.size, passed.data());
+      for (std::size_t j = 0; j < group.size; ++j) {
+        if (passed[j] != 0) insert(stored(group.points[j], group.index[j]));
+      }
+    });
   });
 }
 

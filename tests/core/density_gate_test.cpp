@@ -1,7 +1,8 @@
-// pass_density_cap, the density cap over a stream of new points judged a group at a time, against
-// the rule applied one point after another with a std::map of counts: the same points pass, in
-// the same order, for streams shorter than, equal to and longer than a group, with cells already
-// partly full, and the counts it leaves are the map's. forget_in_groups leaves the map's counts too.
+// judge_group, the density cap over a stream of new points judged a group at a time, against the
+// rule applied one point after another with a std::map of counts: the same points pass, in the
+// same order, for streams shorter than, equal to and longer than a group, in groups of every size,
+// with cells already partly full, and the counts it leaves are the map's; with the cap off every
+// point passes. forget_in_groups leaves the map's counts too.
 // The cells' keys guessed in vector code are WorldGrid's, on walls and off them, near the world's
 // origin and far from it.
 
@@ -17,11 +18,6 @@
 
 namespace eco::detail {
 namespace {
-
-struct Offered {
-  int id;
-  std::array<float, 3> p;
-};
 
 /// A coordinate on a wall of `grid`'s axis near f (the first float at or above it), or the float
 /// before it, or f itself.
@@ -83,43 +79,59 @@ TEST(DensityGate, GuessedKeysAreTheGridsKeys) {
   }
 }
 
-TEST(DensityGate, PassesWhatTheRuleOneByOnePassesInOrder) {
+TEST(DensityGate, JudgesGroupsAsTheRuleJudgesOnePointAfterAnother) {
   const WorldGrid grid({12.5, -3.25, 0.75}, 0.2);
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);  // ~10 cells an axis: cells fill up
   for (const std::size_t n : {std::size_t{0}, std::size_t{1}, kDensityGroup - 1, kDensityGroup,
                               kDensityGroup + 1, 5 * kDensityGroup + 7}) {
     for (const std::uint32_t limit : {0u, 1u, 3u}) {
-      std::vector<Offered> stream;
-      for (std::size_t i = 0; i < n; ++i) stream.push_back({int(i), {coordinate(rng), coordinate(rng), coordinate(rng)}});
+      std::vector<std::array<float, 3>> stream;
+      for (std::size_t i = 0; i < n; ++i) stream.push_back({coordinate(rng), coordinate(rng), coordinate(rng)});
       // some cells hold points already: the first few of the stream, counted beforehand
       CellCounts counts;
       std::map<std::uint64_t, std::uint32_t> expected;
       for (std::size_t i = 0; i < std::min<std::size_t>(n, 5); ++i) {
-        const std::uint64_t key = CellCounts::key(grid.index(stream[i].p));
+        const std::uint64_t key = CellCounts::key(grid.index(stream[i]));
         counts.add(key);
         ++expected[key];
       }
-      std::vector<int> want;
+      std::vector<std::uint8_t> want;
       std::size_t want_refused = 0;
-      for (const Offered& o : stream) {
-        std::uint32_t& held = expected[CellCounts::key(grid.index(o.p))];
+      for (const auto& p : stream) {
+        std::uint32_t& held = expected[CellCounts::key(grid.index(p))];
+        want.push_back(held < limit ? 1 : 0);
         if (held < limit) {
           ++held;
-          want.push_back(o.id);
         } else {
           ++want_refused;
         }
       }
-      std::vector<int> got;
-      const std::size_t refused = pass_density_cap<Offered>(
-          counts, grid, limit, [&](auto&& offer) { for (const Offered& o : stream) offer(o, o.p); },
-          [&](const Offered& o) { got.push_back(o.id); });
+      // groups of every size up to a whole one, one after another
+      std::vector<std::uint8_t> got(n);
+      std::size_t refused = 0;
+      for (std::size_t begin = 0, size = 1; begin < n; begin += size, size = size % kDensityGroup + 1) {
+        size = std::min(size, n - begin);
+        refused += judge_group(counts, grid, limit, &stream[begin], size, &got[begin]);
+      }
       EXPECT_EQ(got, want) << n << " points, limit " << limit;
       EXPECT_EQ(refused, want_refused) << n << " points, limit " << limit;
       for (const auto& [key, held] : expected) EXPECT_EQ(counts.count(key), held);
     }
   }
+}
+
+TEST(DensityGate, EveryPointPassesWhileTheCapIsOff) {
+  const WorldGrid grid({0.0, 0.0, 0.0}, 0.2);
+  const std::vector<std::array<float, 3>> points(kDensityGroup, {0.05f, 0.05f, 0.05f});  // one cell
+  CellCounts counts;
+  std::vector<std::uint8_t> passed(points.size(), 0);
+  EXPECT_EQ(judge_group(counts, grid, DensityCap{}, points.data(), points.size(), passed.data()), 0u);
+  EXPECT_EQ(passed, std::vector<std::uint8_t>(points.size(), 1));
+  EXPECT_EQ(counts.cells(), 0u);  // counted nowhere
+  EXPECT_EQ(judge_group(counts, grid, DensityCap{0.2, 2}, points.data(), points.size(), passed.data()),
+            points.size() - 2);
+  EXPECT_EQ(counts.count(CellCounts::key(grid.index(points[0]))), 2u);
 }
 
 TEST(DensityGate, ForgetsInGroupsWhatLeavesOnePointAtATime) {
