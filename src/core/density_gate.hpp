@@ -64,7 +64,7 @@ inline std::size_t judge_group(CellCounts& counts, const WorldGrid& grid, const 
 }
 
 /// Calls produce(offer); each offer(p) hands the stored coordinates of a point that leaves, and
-/// its cell in `grid` forgets it — a group at a time, slots prefetched, as pass_density_cap asks.
+/// its cell in `grid` forgets it — a group at a time, slots prefetched, as judge_group asks.
 template <class Produce>
 void forget_in_groups(CellCounts& counts, const WorldGrid& grid, Produce&& produce) {
   std::array<std::array<float, 3>, kDensityGroup> points;
