@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 
@@ -45,6 +46,7 @@ inline void find_cells(const CellCounts& counts, const WorldGrid& grid, const st
 /// refused.
 inline std::size_t judge_group(CellCounts& counts, const WorldGrid& grid, std::uint32_t limit,
                                const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed) {
+  assert(n <= kDensityGroup);
   std::array<std::uint64_t, kDensityGroup> keys;
   find_cells(counts, grid, points, keys.data(), n);
   counts.add_below_each(keys.data(), n, limit, passed);
