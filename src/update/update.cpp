@@ -5,6 +5,7 @@
 #include <eco/ego_octree.hpp>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,6 +18,9 @@ std::string describe(const Eigen::Isometry3d& pose) {
   return s.str();
 }
 
+/// The most points a scan may hold: the update names them by 32-bit indices.
+constexpr std::size_t kMaxScanPoints = std::numeric_limits<std::uint32_t>::max();
+
 /// A kept attribute must come with every non-empty scan.
 void require_attribute(const void* values, bool kept, const char* name, const char* field, std::size_t count) {
   if (kept && count > 0 && values == nullptr) {
@@ -27,6 +31,10 @@ void require_attribute(const void* values, bool kept, const char* name, const ch
 }
 
 void check_scan(const ScanView& scan, const Config& config) {
+  if (scan.count > kMaxScanPoints) {  // scan indices are 32-bit through the update
+    throw std::invalid_argument("eco::EgoOctree: scan.count = " + std::to_string(scan.count) + " exceeds " +
+                                std::to_string(kMaxScanPoints) + " points");
+  }
   if (scan.count > 0 && scan.data == nullptr) {
     throw std::invalid_argument("eco::EgoOctree: scan.data is null but scan.count = " +
                                 std::to_string(scan.count));

@@ -123,6 +123,9 @@ TEST_F(BadCalls, NonOrthonormalRotationIsRejected) {
 TEST_F(BadCalls, MalformedScanViewIsRejected) {
   expect_rejected([&] { tree_.update(pose_, ScanView(nullptr, 10)); }, {"scan.data", "10"});
   expect_rejected([&] { tree_.update(pose_, ScanView(scan_.front().data(), 2, 2)); }, {"scan.stride = 2"});
+  // more points than 32-bit indices name: refused before any is read
+  expect_rejected([&] { tree_.update(pose_, ScanView(scan_.front().data(), std::size_t{1} << 32)); },
+                  {"scan.count = 4294967296", "4294967295"});
   expect_unchanged();
 }
 
