@@ -29,17 +29,9 @@ class CellCounts {
 
   /// Counts one more point in `key`'s cell if it holds fewer than `limit`; says whether it did.
   bool add_below(std::uint64_t key, std::uint32_t limit) {
-    if (4 * (used_ + 1) > 3 * slots_.size()) grow();
-    const std::size_t i = find(key);
-    if (count_of(slots_[i]) == 0) {
-      if (limit == 0) return false;
-      slots_[i] = key << kCountBits | 1u;
-      ++used_;
-      return true;
-    }
-    if (count_of(slots_[i]) >= limit) return false;
-    ++slots_[i];
-    return true;
+    std::uint8_t passed = 0;
+    add_below_each(&key, 1, limit, &passed);
+    return passed != 0;
   }
 
   /// add_below(keys[i], limit) for i in [0, n), in order; passed[i] says whether it counted.
@@ -51,8 +43,7 @@ class CellCounts {
     std::size_t used = used_;
     for (std::size_t k = 0; k < n; ++k) {
       const std::uint64_t key = keys[k];
-      std::size_t i = home(key);
-      while (count_of(slots[i]) != 0 && key_of(slots[i]) != key) i = (i + 1) & last;
+      const std::size_t i = probe(slots, last, home(key), key);
       const std::uint32_t count = count_of(slots[i]);
       const bool counted = count < limit;
       passed[k] = std::uint8_t(counted);
@@ -113,9 +104,11 @@ class CellCounts {
   }
   [[nodiscard]] std::size_t next(std::size_t i) const { return (i + 1) & (slots_.size() - 1); }
   /// The slot of `key`'s cell, or the empty slot that ends its probe run (the table is not empty).
-  [[nodiscard]] std::size_t find(std::uint64_t key) const {
-    std::size_t i = home(key);
-    while (count_of(slots_[i]) != 0 && key_of(slots_[i]) != key) i = next(i);
+  [[nodiscard]] std::size_t find(std::uint64_t key) const { return probe(slots_.data(), slots_.size() - 1, home(key), key); }
+  /// From slot i of `slots` (size last + 1) on: the slot holding `key`, or the empty slot ending
+  /// its probe run. Static, on the caller's copies, so a loop that writes slots keeps them in registers.
+  static std::size_t probe(const std::uint64_t* slots, std::size_t last, std::size_t i, std::uint64_t key) {
+    while (count_of(slots[i]) != 0 && key_of(slots[i]) != key) i = (i + 1) & last;
     return i;
   }
 
