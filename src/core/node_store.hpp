@@ -84,6 +84,8 @@ class NodeStore {
   }
 
   [[nodiscard]] std::size_t live() const { return live_; }
+  /// Every node's id is below this.
+  [[nodiscard]] std::size_t id_bound() const { return nodes_.size(); }
   [[nodiscard]] std::size_t bytes() const {
     return nodes_.capacity() * sizeof(Node) + blocks_.capacity() * sizeof(ChildBlock) +
            (free_nodes_.capacity() + free_blocks_.capacity()) * sizeof(std::uint32_t);

@@ -2,7 +2,12 @@
 // tree. The scan's returns are binned into the sensor's range image once; each held point is then
 // projected into it and cleared when the nearest return around its pixel lies beyond it by more
 // than the margin (the rule in include/eco/config.hpp).
+//
+// Two passes: the first reads the tree, streaming the points of every leaf the sensor may see
+// into the pixel lookup (full groups across leaves) and noting the visited nodes; the second
+// rewrites only the leaves that lost points, and the nodes above them.
 
+#include "update/pixel_stream.hpp"
 #include "update/range_image.hpp"
 #include "update/stages.hpp"
 #include "update/subtree_filter.hpp"
@@ -12,30 +17,32 @@ namespace {
 
 constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
 
-/// Clearing's judgement: subtrees wholly beyond the sensor's range or outside its vertical field of
-/// view stay whole; the others are looked into point by point.
-class Clearer {
+/// Where the sensor looks from this frame: held points in its frame, and which subtrees lie wholly
+/// beyond its range or outside its vertical field of view (none of their points has a pixel).
+class Sight {
  public:
-  Clearer(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats)
-      : t_(tree),
-        pixels_(tree.config().sensor),
-        image_(pixels_, scan, tree.range_image_buffer()),
-        sensor_R_world_(motion.pose.linear().transpose()),
+  Sight(const Motion& motion, const SensorModel& sensor)
+      : sensor_R_world_(motion.pose.linear().transpose()),
         sensor_from_anchor_(motion.anchor - motion.pose.translation()),
         up_(sensor_R_world_.row(2).transpose()),
-        sin_fov_min_(std::sin(tree.config().sensor.vertical_fov_min * kRadiansPerDegree)),
-        sin_fov_max_(std::sin(tree.config().sensor.vertical_fov_max * kRadiansPerDegree)),
-        margin_(tree.config().clearing.margin),
-        max_range_(tree.config().sensor.max_range),
-        stats_(stats) {}
+        sin_fov_min_(std::sin(sensor.vertical_fov_min * kRadiansPerDegree)),
+        sin_fov_max_(std::sin(sensor.vertical_fov_max * kRadiansPerDegree)),
+        max_range_(sensor.max_range) {}
 
-  [[nodiscard]] Verdict judge(const Node& n) const {
+  /// The held point at stored coordinates `p` in the sensor's frame.
+  [[nodiscard]] Eigen::Vector3d sensor_frame(const std::array<float, 3>& p) const {
+    return sensor_R_world_ * (sensor_from_anchor_ + Eigen::Vector3d(double(p[0]), double(p[1]), double(p[2])));
+  }
+  /// Whether some point of `box` (anchor frame) may lie in the sensor's image.
+  [[nodiscard]] bool may_see(const Aabb& box) const {
     const Eigen::Vector3d sensor = -sensor_from_anchor_;  // in the anchor frame
-    const double nearest = std::sqrt(n.bounds.sq_dist({sensor[0], sensor[1], sensor[2]}));
+    const double nearest = std::sqrt(box.sq_dist({sensor[0], sensor[1], sensor[2]}));
     // widened against rounding: a point's range is computed after the rotation
     const bool beyond_range = nearest > max_range_ * (1.0 + 1e-9) + 1e-9;
-    return beyond_range || outside_field_of_view(n.bounds, nearest) ? Verdict::KeepAll : Verdict::LookInside;
+    return !beyond_range && !outside_field_of_view(box, nearest);
   }
+
+ private:
   /// Whether every point of `box` (anchor frame; `nearest` [m] from the sensor) lies below or
   /// above the vertical field of view: sin(elevation) = (p - sensor) . up / |p - sensor|, bounded
   /// over the box, with a slack far above the rounding of the pixel formulas.
@@ -49,70 +56,110 @@ class Clearer {
     if (height + spread + slack < sin_fov_min_ * (sin_fov_min_ <= 0.0 ? farthest : nearest)) return true;
     return height - spread - slack > sin_fov_max_ * (sin_fov_max_ >= 0.0 ? farthest : nearest);
   }
-  void drop(std::uint32_t) {}  // never judged DropAll
-  /// Judges the leaf's points first, a group at a time, and rewrites the leaf only when the scan
-  /// saw through some: most leaves lose nothing.
-  bool filter_leaf(std::uint32_t id) {
-    const Node& n = t_.nodes()[id];
-    const PointSpan points = t_.points().span(n.link, n.count);
-    seen_through_.resize(points.size);
-    std::size_t seen = 0;
-    PixelLookup::Group& group = group_;
-    std::array<std::uint32_t, PixelLookup::kGroup> pixels;
-    std::array<double, PixelLookup::kGroup> ranges;
-    for (std::uint32_t begin = 0; begin < points.size; begin += std::uint32_t(group.size)) {
-      group.size = std::min<std::size_t>(PixelLookup::kGroup, points.size - begin);
-      for (std::size_t i = 0; i < group.size; ++i) {
-        const Eigen::Vector3d v = sensor_frame({points.x[begin + i], points.y[begin + i], points.z[begin + i]});
-        group.x[i] = v.x(), group.y[i] = v.y(), group.z[i] = v.z();
-      }
-      pixels_.pixels_of(group, pixels, ranges);
-      for (std::size_t i = 0; i < group.size; ++i) {
-        seen_through_[begin + i] = seen_through(pixels[i], ranges[i]) ? 1 : 0;
-        seen += seen_through_[begin + i];
-      }
-    }
-    stats_.cleared += seen;
-    if (seen == 0) return false;
-    std::uint32_t i = 0;  // retain() asks in order
-    t_.retain(id, [&](const StoredPoint&) { return seen_through_[i++] == 0; });
-    return true;
-  }
 
-  /// Whether the scan sees through the held point at stored coordinates `p` (counted).
-  bool cleared(const std::array<float, 3>& p) {
-    const Eigen::Vector3d v = sensor_frame(p);
-    double range = 0.0;
-    const std::uint32_t pixel = pixels_.pixel_of(v, range);
-    const bool seen = seen_through(pixel, range);
-    stats_.cleared += seen ? 1 : 0;
-    return seen;
-  }
-
- private:
-  /// The held point at stored coordinates `p` in the sensor's frame.
-  [[nodiscard]] Eigen::Vector3d sensor_frame(const std::array<float, 3>& p) const {
-    return sensor_R_world_ * (sensor_from_anchor_ + Eigen::Vector3d(double(p[0]), double(p[1]), double(p[2])));
-  }
-  /// Whether the scan sees through a held point at `pixel` (or kOutside), `range` from the sensor:
-  /// a pixel with no return around it (kNoReturn) is not evidence of free space.
-  [[nodiscard]] bool seen_through(std::uint32_t pixel, double range) const {
-    const double nearest = pixel == PixelLookup::kOutside ? RangeImage::kNoReturn : image_.nearest_around(pixel);
-    return nearest != RangeImage::kNoReturn && nearest > range + margin_;
-  }
-
-  Tree& t_;
-  PixelLookup pixels_;
-  RangeImage image_;
   Eigen::Matrix3d sensor_R_world_;
   Eigen::Vector3d sensor_from_anchor_;  // anchor - sensor position: stored point + this = sensor-relative, world axes
   Eigen::Vector3d up_;                  // the sensor's z axis, world axes
   double sin_fov_min_ = 0.0, sin_fov_max_ = 0.0;
-  double margin_ = 0.0;
   double max_range_ = 0.0;
-  UpdateStats& stats_;
-  std::vector<char> seen_through_;  // filter_leaf's verdicts, per point of the leaf
-  PixelLookup::Group group_;        // filter_leaf's, kept: zeroing a group for every leaf cost more than its use
+};
+
+/// The scan's verdict on held points: seen through (1) or not (0).
+class SeenThrough {
+ public:
+  SeenThrough(const RangeImage& image, double margin) : image_(image), margin_(margin) {}
+  /// For a held point at `pixel` (or kOutside), `range` from the sensor: a pixel with no return
+  /// around it (kNoReturn) is not evidence of free space.
+  [[nodiscard]] bool operator()(std::uint32_t pixel, double range) const {
+    const double nearest = pixel == PixelLookup::kOutside ? RangeImage::kNoReturn : image_.nearest_around(pixel);
+    return nearest != RangeImage::kNoReturn && nearest > range + margin_;
+  }
+
+ private:
+  const RangeImage& image_;
+  double margin_ = 0.0;
+};
+
+/// A node the first pass looked into, in the order it did (preorder): a leaf's points have
+/// verdicts [first, first + count) in Verdicts.
+struct Visit {
+  std::uint32_t id;
+  std::uint32_t parent;  // its parent's Visit, kNone for the root
+  std::uint32_t first;
+  std::uint32_t seen;    // points seen through in the subtree (filled after the pass)
+};
+using Verdicts = std::vector<char>;
+
+/// Pass 1: streams the points of every leaf under `id` that the sensor may see into `stream`
+/// (tagged with their verdicts' index) and notes the nodes looked into in `visits`.
+template <class Stream>
+void look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, const Sight& sight, Stream& stream,
+               std::vector<Visit>& visits, Verdicts& verdicts) {
+  const Node& n = t.nodes()[id];
+  if (n.count == 0 || !sight.may_see(n.bounds)) return;
+  const std::uint32_t here = std::uint32_t(visits.size());
+  const std::uint32_t first = std::uint32_t(verdicts.size());
+  visits.push_back({id, parent, first, 0});
+  if (n.leaf) {
+    const PointSpan points = t.points().span(n.link, n.count);
+    verdicts.resize(first + points.size);
+    for (std::uint32_t i = 0; i < points.size; ++i) {
+      const Eigen::Vector3d v = sight.sensor_frame({points.x[i], points.y[i], points.z[i]});
+      stream.push(v.x(), v.y(), v.z(), first + i);
+    }
+    return;
+  }
+  for (int o = 0; o < 8; ++o) {
+    const std::uint32_t child = t.nodes().child(id, o);
+    if (child != kNone) look_into(t, child, here, sight, stream, visits, verdicts);
+  }
+}
+
+/// Pass 2's plan from pass 1's visits and verdicts: per node id, 0 where nothing below was seen
+/// through, else its Visit + 1. Empty when nothing was; counts the points in `stats`.
+std::vector<std::uint32_t> plan_clearing(const Tree& t, std::vector<Visit>& visits, const Verdicts& verdicts,
+                                         UpdateStats& stats) {
+  std::size_t cleared = 0;
+  for (std::size_t v = visits.size(); v-- > 0;) {  // children before their parents
+    Visit& visit = visits[v];
+    const Node& n = t.nodes()[visit.id];
+    if (n.leaf) {
+      for (std::uint32_t i = 0; i < n.count; ++i) visit.seen += std::uint32_t(verdicts[visit.first + i]);
+      cleared += visit.seen;
+    }
+    if (visit.parent != kNone) visits[visit.parent].seen += visit.seen;
+  }
+  stats.cleared += cleared;
+  if (cleared == 0) return {};
+  std::vector<std::uint32_t> plan(t.nodes().id_bound(), 0);
+  for (std::size_t v = 0; v < visits.size(); ++v) {
+    if (visits[v].seen > 0) plan[visits[v].id] = std::uint32_t(v + 1);
+  }
+  return plan;
+}
+
+/// Pass 2, as a filter of filter_subtree: looks only into the subtrees that lost points.
+class Clearing {
+ public:
+  Clearing(Tree& tree, const std::vector<std::uint32_t>& plan, const std::vector<Visit>& visits,
+           const Verdicts& verdicts)
+      : t_(tree), plan_(plan), visits_(visits), verdicts_(verdicts) {}
+
+  [[nodiscard]] Verdict judge(std::uint32_t id, const Node&) const {
+    return plan_[id] != 0 ? Verdict::LookInside : Verdict::KeepAll;
+  }
+  void drop(std::uint32_t) {}  // never judged DropAll
+  bool filter_leaf(std::uint32_t id) {
+    std::uint32_t i = visits_[plan_[id] - 1].first;  // retain() asks in order
+    t_.retain(id, [&](const StoredPoint&) { return verdicts_[i++] == 0; });
+    return true;
+  }
+
+ private:
+  Tree& t_;
+  const std::vector<std::uint32_t>& plan_;
+  const std::vector<Visit>& visits_;
+  const Verdicts& verdicts_;
 };
 
 }  // namespace
@@ -120,13 +167,30 @@ class Clearer {
 void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint>& displaced,
                       UpdateStats& stats) {
   if (!tree.config().clearing.enabled) return;
-  Clearer clearer(tree, motion, scan, stats);
+  const PixelLookup pixels(tree.config().sensor);
+  const RangeImage image(pixels, scan, tree.range_image_buffer());
+  const Sight sight(motion, tree.config().sensor);
+  const SeenThrough seen_through(image, tree.config().clearing.margin);
   std::erase_if(displaced, [&](const StoredPoint& s) {
-    if (!clearer.cleared(s.p)) return false;
+    double range = 0.0;
+    const std::uint32_t pixel = pixels.pixel_of(sight.sensor_frame(s.p), range);
+    if (!seen_through(pixel, range)) return false;
+    ++stats.cleared;
     tree.forget(s);
     return true;
   });
-  if (tree.root() != kNone && filter_subtree(tree, tree.root(), clearer) == Filtered::Gone) {
+  if (tree.root() == kNone) return;
+  std::vector<Visit> visits;
+  Verdicts verdicts;
+  PixelStream stream(pixels, [&](std::uint32_t tag, std::uint32_t pixel, double range) {
+    verdicts[tag] = seen_through(pixel, range) ? 1 : 0;
+  });
+  look_into(tree, tree.root(), kNone, sight, stream, visits, verdicts);
+  stream.flush();
+  const std::vector<std::uint32_t> plan = plan_clearing(tree, visits, verdicts, stats);
+  if (plan.empty()) return;
+  Clearing clearing(tree, plan, visits, verdicts);
+  if (filter_subtree(tree, tree.root(), clearing) == Filtered::Gone) {
     tree.place_root(tree.root_cell(), tree.lattice());
   }
 }

@@ -17,13 +17,13 @@ double pseudo_angle_at(double degrees) {
 
 /// For `bins` equal bins from walls.front(), the last wall at or below each bin's lower end (never the
 /// last two: the one closing the range and the sentinel).
-std::vector<std::uint32_t> starts(const std::vector<double>& walls, std::size_t bins, double per_unit) {
-  std::vector<std::uint32_t> start(bins);
+std::vector<double> starts(const std::vector<double>& walls, std::size_t bins, double per_unit) {
+  std::vector<double> start(bins);
   std::uint32_t i = 0;
   for (std::size_t b = 0; b < bins; ++b) {
     const double lower = walls.front() + double(b) / per_unit;
     while (i + 3 < walls.size() && walls[i + 1] <= lower) ++i;
-    start[b] = i;
+    start[b] = double(i);
   }
   return start;
 }
@@ -58,6 +58,13 @@ void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, std::
   }
 }
 
+/// Tier 2 for a whole group (every lane), in vector code where the compiler manages it.
+ECO_VECTOR_CLONES
+void PixelLookup::second_tier(const Group& points, const std::array<double, kGroup>& ranges, const SecondTierWalls& walls,
+                              std::array<std::uint32_t, kGroup>& pixels) {
+  for (std::size_t i = 0; i < kGroup; ++i) pixels[i] = second_tier_lane(walls, points.x[i], points.y[i], points.z[i], ranges[i]);
+}
+
 PixelLookup::PixelLookup(const SensorModel& sensor)
     : sensor_(sensor), rows_(sensor.rows()), columns_(sensor.columns()) {
   static_assert(kAngleGuard > 2 * kFastAtan2Error, "tier 1's guard must cover its arctangent's error");
@@ -65,23 +72,29 @@ PixelLookup::PixelLookup(const SensorModel& sensor)
   for (int r = 0; r < rows_; ++r) {
     row_walls_.push_back(std::sin((sensor.vertical_fov_min + r * sensor.vertical_resolution) * kPi / 180.0));
   }
-  fov_top_ = std::sin(sensor.vertical_fov_max * kPi / 180.0);
-  row_walls_.insert(row_walls_.end(), {fov_top_, kInfinity});
+  const double fov_top = std::sin(sensor.vertical_fov_max * kPi / 180.0);
+  row_walls_.insert(row_walls_.end(), {fov_top, kInfinity});
   for (int c = 0; c < columns_; ++c) column_walls_.push_back(pseudo_angle_at(-180.0 + c * sensor.horizontal_resolution));
   column_walls_.front() = 0.0;  // -180 deg, whatever sin(-pi) rounds to
   column_walls_.insert(column_walls_.end(), {4.0, kInfinity});
   // Bins narrower than the narrowest pixel hold one wall at most. A column spans at least half its
   // width in radians of pseudo-angle (the slope is 1/2 to 1), so 4 bins a column suffice; a row's
   // sine span shrinks with cos(elevation): the bins follow its narrowest row, within bounds.
-  column_bins_per_unit_ = double(columns_);
-  column_start_ = starts(column_walls_, 4 * std::size_t(columns_), column_bins_per_unit_);
+  const double column_bins_per_unit = double(columns_);
+  column_start_ = starts(column_walls_, 4 * std::size_t(columns_), column_bins_per_unit);
   double narrowest = kInfinity;  // of the whole rows (the top one may be a sliver)
   for (int r = 0; r + 1 < rows_; ++r) narrowest = std::min(narrowest, row_walls_[r + 1] - row_walls_[r]);
-  const double span = fov_top_ - row_walls_.front();
+  const double span = fov_top - row_walls_.front();
   const double wanted = std::ceil(2.0 * span / std::max(narrowest, 1e-300));
   const std::size_t row_bins = std::size_t(std::clamp(wanted, 4.0 * rows_, 16.0 * rows_ + 16.0));
-  row_bins_per_unit_ = double(row_bins) / span;
-  row_start_ = starts(row_walls_, row_bins, row_bins_per_unit_);
+  const double row_bins_per_unit = double(row_bins) / span;
+  row_start_ = starts(row_walls_, row_bins, row_bins_per_unit);
+  second_ = {{row_walls_.data(), row_start_.data(), row_start_.size(), row_bins_per_unit},
+             {column_walls_.data(), column_start_.data(), column_start_.size(), column_bins_per_unit},
+             row_walls_.front(),
+             fov_top,
+             sensor.max_range,
+             std::uint32_t(columns_)};
   const auto f = [](double value) { return float(value); };
   const double min = sensor.vertical_fov_min, max = sensor.vertical_fov_max;
   const double rows_guard = kAngleGuard / sensor.vertical_resolution, columns_guard = kAngleGuard / sensor.horizontal_resolution;
@@ -91,14 +104,11 @@ PixelLookup::PixelLookup(const SensorModel& sensor)
            std::uint32_t(columns_), sensor.max_range};
 }
 
-void PixelLookup::pixels_of(const Group& points, std::array<std::uint32_t, kGroup>& pixels,
-                            std::array<double, kGroup>& ranges) const {
-  first_tier(points, fast_, pixels, ranges);
+void PixelLookup::later_tiers_of(const Group& points, const std::array<double, kGroup>& ranges,
+                                 std::array<std::uint32_t, kGroup>& pixels) const {
+  second_tier(points, ranges, second_, pixels);
   for (std::size_t i = 0; i < points.size; ++i) {
-    if (pixels[i] == kUndecided) {
-      double range = 0.0;
-      pixels[i] = pixel_of({points.x[i], points.y[i], points.z[i]}, range);
-    }
+    if (pixels[i] == kUndecided) pixels[i] = exact_pixel_of({points.x[i], points.y[i], points.z[i]});
   }
 }
 

@@ -7,7 +7,8 @@
 //    AVX2), in single precision: elevation and azimuth by a polynomial arctangent
 //    (src/update/fast_atan2.hpp), row and column by truncation, wherever both angles lie farther
 //    than kAngleGuard from every wall.
-// 2. One point in double, without arctangents: the elevation replaced by its sine, z / |v|, and
+// 2. In double, without arctangents, for the points tier 1 leaves (PixelStream gathers them into
+//    groups of their own) or one point: the elevation replaced by its sine, z / |v|, and
 //    the azimuth by a pseudo-angle that rises with it, 0 at -180 deg through 1, 2, 3 at -90, 0,
 //    90 deg to 4 at 180 deg (y / (|x| + |y|), shifted by quadrant). Each wall is mapped into these
 //    once; a coarse table gives the wall just below a value and one comparison the next. Both maps
@@ -34,23 +35,15 @@ class PixelLookup {
   static constexpr std::uint32_t kOutside = std::numeric_limits<std::uint32_t>::max();
 
   explicit PixelLookup(const SensorModel& sensor);
+  PixelLookup(const PixelLookup&) = delete;  // its walls point into its own storage
+  PixelLookup& operator=(const PixelLookup&) = delete;
 
   /// The pixel (row * columns + column) of the sensor-frame point `v`, or kOutside; `range` gets
   /// |v|. Exactly exact_pixel_of(), faster (tier 2, then 3).
   [[nodiscard]] std::uint32_t pixel_of(const Eigen::Vector3d& v, double& range) const {
     range = v.norm();
-    if (!(range <= sensor_.max_range)) return kOutside;
-    if (v.x() == 0.0 && v.y() == 0.0) return exact_pixel_of(v);  // straight up or down, or the origin
-    const double sine = v.z() / range;
-    if (!(sine >= row_walls_.front() + kGuard && sine <= fov_top_ - kGuard)) {
-      const bool outside = sine < row_walls_.front() - kGuard || sine > fov_top_ + kGuard;
-      return outside ? kOutside : exact_pixel_of(v);  // clearly outside, or at the edge
-    }
-    const double pseudo = pseudo_angle(v.x(), v.y());
-    const int row = between(row_walls_, row_start_, (sine - row_walls_.front()) * row_bins_per_unit_, sine);
-    const int column = between(column_walls_, column_start_, pseudo * column_bins_per_unit_, pseudo);
-    if ((row < 0) | (column < 0)) return exact_pixel_of(v);  // within kGuard of a wall
-    return index(row, column);
+    const std::uint32_t pixel = second_tier_lane(second_, v.x(), v.y(), v.z(), range);
+    return pixel == kUndecided ? exact_pixel_of(v) : pixel;
   }
 
   /// Tier 2's stand-in for the azimuth of (x, y) != (0, 0): in [0, 4], rising with it.
@@ -59,14 +52,23 @@ class PixelLookup {
     return x >= 0.0 ? 2.0 + d : (y >= 0.0 ? 4.0 - d : -d);
   }
 
-  /// pixel_of for a group of points (tier 1, then 2 and 3 for the points it leaves).
+  /// Points whose pixels are looked up together (PixelStream's).
   static constexpr std::size_t kGroup = 16;
   struct Group {
     std::size_t size = 0;  // at most kGroup
     alignas(16) std::array<double, kGroup> x{}, y{}, z{};
   };
-  void pixels_of(const Group& points, std::array<std::uint32_t, kGroup>& pixels,
-                 std::array<double, kGroup>& ranges) const;
+  /// Tier 1's verdict on a point it leaves to tiers 2 and 3 (no pixel has this index: kMaxPixels).
+  static constexpr std::uint32_t kUndecided = kOutside - 1;
+  /// PixelStream's parts. Tier 1 for a group: each point's pixel, kOutside, or kUndecided, and its
+  /// range |v| (all of them).
+  void first_tier_of(const Group& points, std::array<std::uint32_t, kGroup>& pixels,
+                     std::array<double, kGroup>& ranges) const {
+    first_tier(points, fast_, pixels, ranges);
+  }
+  /// Tiers 2 and 3 for a group whose points' ranges are `ranges`: each point's pixel or kOutside.
+  void later_tiers_of(const Group& points, const std::array<double, kGroup>& ranges,
+                      std::array<std::uint32_t, kGroup>& pixels) const;
 
   /// The pixel by the formulas themselves, with libm's atan2; `range` gets |v|.
   [[nodiscard]] std::uint32_t exact_pixel_of(const Eigen::Vector3d& v, double& range) const;
@@ -93,17 +95,57 @@ class PixelLookup {
   /// pseudo-angle). The test passes at 1e-14 and fails at 0.
   static constexpr double kGuard = 1e-12;
 
-  /// The i with walls[i] + kGuard <= value < walls[i + 1] - kGuard, or -1 when the value lies within
-  /// kGuard of a wall (or the table's guess is off by more than one wall: a bin holding two).
-  /// `bin` >= 0 is the value's position in start's bins (the last takes all beyond).
-  [[nodiscard]] static int between(const std::vector<double>& walls, const std::vector<std::uint32_t>& start,
-                                   double bin, double value) {
-    const std::size_t b = std::min(std::size_t(bin), start.size() - 1);
-    std::uint32_t i = start[b];
-    i += value >= walls[i + 1] ? 1 : 0;
-    const bool clear = (value - walls[i] >= kGuard) & (walls[i + 1] - value > kGuard);
-    return clear ? int(i) : -1;
+  /// Tier 2's walls: of the rows, sin(elevation) of each row's lower wall, then of the field of
+  /// view's top, then +infinity; of the columns, the pseudo-angle of each column's left wall, then 4
+  /// (the seam at 180 deg), then +infinity. A coarse table of equal bins from the first wall gives,
+  /// per bin, the wall at or below its lower end.
+  struct Walls {
+    const double* at = nullptr;
+    const double* start = nullptr;  // whole numbers: GCC 12 vectorises a gather of doubles here, not of integers
+    std::size_t bins = 0;
+    double bins_per_unit = 0.0;
+  };
+  struct SecondTierWalls {
+    Walls rows, columns;
+    double fov_bottom = 0.0, fov_top = 0.0;  // sin(vertical_fov_min), sin(vertical_fov_max)
+    double max_range = 0.0;
+    std::uint32_t column_count = 0;
+  };
+
+  /// The i with walls[i] <= value < walls[i + 1] by the table's guess and one comparison; `clear`
+  /// becomes 1 when the value lies kGuard or more inside them, 0 when not (near a wall, NaN, or the
+  /// guess off by more than one wall: a bin holding two). `bin` is the value's position in the
+  /// table's bins (clamped to them).
+  [[gnu::always_inline]] static std::int32_t between(const Walls& walls, double bin, double value, std::uint32_t& clear) {
+    const std::int32_t b = std::int32_t(std::min(double(walls.bins - 1), std::max(0.0, bin)));  // NaN: 0
+    std::int32_t i = std::int32_t(walls.start[b]);  // exact
+    i += std::int32_t(value >= walls.at[i + 1]);
+    clear = std::uint32_t(value - walls.at[i] >= kGuard) & std::uint32_t(walls.at[i + 1] - value > kGuard);
+    return i;
   }
+  /// Tier 2 for the point (x, y, z) with |v| = range: its pixel, kOutside, or kUndecided (left to
+  /// the formulas: straight up or down, the origin, NaN, or within kGuard of a wall). Without
+  /// branches, for the compiler to vectorise later_tiers_of's loop (GCC 12 does so with flags as
+  /// integers, not when a flag is read back from a selected value).
+  [[gnu::always_inline]] static std::uint32_t second_tier_lane(const SecondTierWalls& w, double x, double y, double z,
+                                                               double range) {
+    const double sine = z / range;
+    const double pseudo = pseudo_angle(x, y);
+    std::uint32_t row_clear = 0, column_clear = 0;
+    const std::int32_t row = between(w.rows, (sine - w.fov_bottom) * w.rows.bins_per_unit, sine, row_clear);
+    const std::int32_t column = between(w.columns, pseudo * w.columns.bins_per_unit, pseudo, column_clear);
+    const std::uint32_t within_range = std::uint32_t(range <= w.max_range);
+    const std::uint32_t off_axis = std::uint32_t(x != 0.0) | std::uint32_t(y != 0.0);
+    const std::uint32_t inside = std::uint32_t(sine >= w.fov_bottom + kGuard) & std::uint32_t(sine <= w.fov_top - kGuard);
+    const std::uint32_t outside = std::uint32_t(sine < w.fov_bottom - kGuard) | std::uint32_t(sine > w.fov_top + kGuard);
+    const std::uint32_t pixel = std::uint32_t(row) * w.column_count + std::uint32_t(column);
+    const std::uint32_t decided = inside & row_clear & column_clear;
+    // the formulas' order: beyond the range; on the axis; outside or at the field of view's edges; a wall
+    const std::uint32_t answer = decided != 0 ? pixel : outside != 0 ? kOutside : kUndecided;
+    return within_range == 0 ? kOutside : off_axis == 0 ? kUndecided : answer;
+  }
+  static void second_tier(const Group& points, const std::array<double, kGroup>& ranges, const SecondTierWalls& walls,
+                          std::array<std::uint32_t, kGroup>& pixels);
 
   /// Tier 1's walls and guards in single precision [deg, and rows or columns].
   struct FirstTierWalls {
@@ -114,8 +156,6 @@ class PixelLookup {
     std::uint32_t columns;
     double max_range;
   };
-  /// Tier 1's verdict on a point it leaves to tiers 2 and 3 (no pixel has this index: kMaxPixels).
-  static constexpr std::uint32_t kUndecided = kOutside - 1;
   /// Static, its walls handed in: a member's fields could alias the outputs for all the compiler
   /// knows, and it would not vectorise the loop.
   static void first_tier(const Group& points, const FirstTierWalls& walls, std::array<std::uint32_t, kGroup>& pixels,
@@ -124,13 +164,9 @@ class PixelLookup {
   SensorModel sensor_;
   FirstTierWalls fast_{};
   int rows_ = 0, columns_ = 0;
-  // sin(elevation) of each row's lower wall, then of the field of view's top, then +infinity
-  std::vector<double> row_walls_;
-  // the pseudo-angle of each column's left wall, then 4 (the seam at 180 deg), then +infinity
-  std::vector<double> column_walls_;
-  std::vector<std::uint32_t> row_start_, column_start_;  // per bin: the wall at or below its lower end
-  double fov_top_ = 0.0;  // sin(vertical_fov_max)
-  double row_bins_per_unit_ = 0.0, column_bins_per_unit_ = 0.0;
+  std::vector<double> row_walls_, column_walls_;          // SecondTierWalls' storage
+  std::vector<double> row_start_, column_start_;         // SecondTierWalls' storage
+  SecondTierWalls second_;
 };
 
 }  // namespace eco::detail

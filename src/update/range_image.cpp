@@ -1,5 +1,7 @@
 #include "update/range_image.hpp"
 
+#include "update/pixel_stream.hpp"
+
 #include <algorithm>
 #include <array>
 #include <utility>
@@ -24,22 +26,14 @@ RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<dou
   storage.resize(size + 3 * columns);
   const std::span<double> nearest(storage.data(), size);  // becomes the 3x3 minimum at the end
   std::fill(nearest.begin(), nearest.end(), kNoReturn);
-  PixelLookup::Group group;
-  std::array<std::uint32_t, PixelLookup::kGroup> pixel;
-  std::array<double, PixelLookup::kGroup> range;
-  const auto bin = [&] {
-    pixels.pixels_of(group, pixel, range);
-    for (std::size_t i = 0; i < group.size; ++i) {
-      if (pixel[i] != PixelLookup::kOutside) nearest[pixel[i]] = std::min(nearest[pixel[i]], range[i]);
-    }
-    group.size = 0;
-  };
+  PixelStream stream(pixels, [&](std::uint32_t, std::uint32_t pixel, double range) {
+    if (pixel != PixelLookup::kOutside) nearest[pixel] = std::min(nearest[pixel], range);
+  });
   for (std::size_t i = 0; i < scan.count; ++i) {  // a return with a non-finite coordinate has no pixel
     const float* p = scan.data + i * scan.stride;
-    group.x[group.size] = p[0], group.y[group.size] = p[1], group.z[group.size] = p[2];
-    if (++group.size == PixelLookup::kGroup) bin();
+    stream.push(p[0], p[1], p[2], 0);
   }
-  bin();
+  stream.flush();
   // The minimum over 3x3 neighbourhoods, separably and in place: three rows' minima along them
   // are kept (the row's, the one above's, the one below's), each computed before its row is
   // overwritten by the minimum across them.

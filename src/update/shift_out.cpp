@@ -11,7 +11,7 @@ class Pruner {
   Pruner(Tree& tree, const Box& box, UpdateStats& stats)
       : t_(tree), box_(box), stats_(stats), cutoff_(tree.age_cutoff()) {}
 
-  [[nodiscard]] Verdict judge(const Node& n) const {
+  [[nodiscard]] Verdict judge(std::uint32_t, const Node& n) const {
     if (n.oldest >= cutoff_ && box_.contains_all(n.bounds)) return Verdict::KeepAll;
     if (box_.misses(n.bounds)) return Verdict::DropAll;
     return Verdict::LookInside;

@@ -13,7 +13,7 @@ enum class Verdict { KeepAll, DropAll, LookInside };
 /// What a filter did to a subtree.
 enum class Filtered { Unchanged, Changed, Gone };
 
-/// `filter` provides Verdict judge(const Node&), void drop(std::uint32_t id) (the subtree
+/// `filter` provides Verdict judge(std::uint32_t id, const Node&), void drop(std::uint32_t id) (the subtree
 /// leaves the tree) and bool filter_leaf(std::uint32_t id) (keeps some of the leaf's points and
 /// refits it; false when it kept them all and left the leaf untouched). Only what changed is
 /// refitted; the root is never released (Gone: it holds nothing now).
@@ -21,7 +21,7 @@ template <class Filter>
 Filtered filter_subtree(Tree& t, std::uint32_t id, Filter& filter) {
   const Node& n = t.nodes()[id];
   if (n.count == 0) return Filtered::Unchanged;
-  const Verdict verdict = filter.judge(n);
+  const Verdict verdict = filter.judge(id, n);
   if (verdict == Verdict::KeepAll) return Filtered::Unchanged;
   if (verdict == Verdict::DropAll) {
     filter.drop(id);

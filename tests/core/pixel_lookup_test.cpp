@@ -4,6 +4,7 @@
 
 #include "update/fast_atan2.hpp"
 #include "update/pixel_lookup.hpp"
+#include "update/pixel_stream.hpp"
 
 #include <gtest/gtest.h>
 
@@ -99,21 +100,26 @@ TEST(PixelLookup, FastPixelsAreTheFormulasPixels) {
       inside += fast != PixelLookup::kOutside ? 1 : 0;
     }
     EXPECT_GT(inside, points.size() / 4);
-    // in groups of every size up to kGroup, each point's pixel and range as one at a time
-    PixelLookup::Group group;
-    std::array<std::uint32_t, PixelLookup::kGroup> pixels{};
-    std::array<double, PixelLookup::kGroup> ranges{};
-    for (std::size_t begin = 0; begin < points.size(); begin += group.size) {
-      group.size = std::min(points.size() - begin, 1 + begin % PixelLookup::kGroup);
-      for (std::size_t i = 0; i < group.size; ++i) {
-        group.x[i] = points[begin + i].x(), group.y[i] = points[begin + i].y(), group.z[i] = points[begin + i].z();
-      }
-      lookup.pixels_of(group, pixels, ranges);
-      for (std::size_t i = 0; i < group.size; ++i) {
-        double range = 0.0;
-        ASSERT_EQ(pixels[i], lookup.exact_pixel_of(points[begin + i], range)) << points[begin + i].transpose();
-        ASSERT_TRUE(same(ranges[i], range)) << ranges[i] << " " << range;
-      }
+    // streamed (tier 1 in groups, the points it leaves in groups of their own), each point's
+    // pixel and range as one at a time, every point handed back once
+    std::vector<std::uint32_t> pixels(points.size(), PixelLookup::kUndecided);
+    std::vector<double> ranges(points.size(), -1.0);
+    std::size_t taken = 0;
+    PixelStream stream(lookup, [&](std::uint32_t tag, std::uint32_t pixel, double range) {
+      pixels.at(tag) = pixel;
+      ranges.at(tag) = range;
+      ++taken;
+    });
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      stream.push(points[i].x(), points[i].y(), points[i].z(), std::uint32_t(i));
+      if (i % 1000 == 999) stream.flush();  // groups of every size come from flushes too
+    }
+    stream.flush();
+    EXPECT_EQ(taken, points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      double range = 0.0;
+      ASSERT_EQ(pixels[i], lookup.exact_pixel_of(points[i], range)) << points[i].transpose();
+      ASSERT_TRUE(same(ranges[i], range)) << ranges[i] << " " << range;
     }
   }
 }

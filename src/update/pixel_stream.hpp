@@ -1,0 +1,65 @@
+#pragma once
+// Pixels for many points, each tier of PixelLookup on full groups: points are handed in one at a
+// time with a tag; tier 1 runs on each group of kGroup as it fills, and the points it leaves
+// (the simulator casts one ray in ten on a column's wall) wait for a group of their own for tiers
+// 2 and 3, instead of taking them one by one beside it.
+
+#include "update/pixel_lookup.hpp"
+
+#include <array>
+#include <cstdint>
+#include <utility>
+
+namespace eco::detail {
+
+/// Calls take(tag, pixel, range) for every point pushed — its pixel as PixelLookup::pixel_of gives
+/// it (or kOutside) and |v| — not in the order pushed; flush() hands back the last ones.
+template <class Take>
+class PixelStream {
+ public:
+  static constexpr std::size_t kGroup = PixelLookup::kGroup;
+
+  PixelStream(const PixelLookup& lookup, Take take) : lookup_(lookup), take_(std::move(take)) {}
+
+  /// The sensor-frame point (x, y, z), named `tag` to take().
+  void push(double x, double y, double z, std::uint32_t tag) {
+    const std::size_t i = fresh_.size++;
+    fresh_.x[i] = x, fresh_.y[i] = y, fresh_.z[i] = z;
+    fresh_tags_[i] = tag;
+    if (fresh_.size == kGroup) run_fresh();
+  }
+  void flush() {
+    run_fresh();
+    run_left();
+  }
+
+ private:
+  void run_fresh() {
+    lookup_.first_tier_of(fresh_, pixels_, ranges_);
+    for (std::size_t i = 0; i < fresh_.size; ++i) {
+      if (pixels_[i] != PixelLookup::kUndecided) {
+        take_(fresh_tags_[i], pixels_[i], ranges_[i]);
+        continue;
+      }
+      const std::size_t j = left_.size++;
+      left_.x[j] = fresh_.x[i], left_.y[j] = fresh_.y[i], left_.z[j] = fresh_.z[i];
+      left_ranges_[j] = ranges_[i];
+      left_tags_[j] = fresh_tags_[i];
+      if (left_.size == kGroup) run_left();
+    }
+    fresh_.size = 0;
+  }
+  void run_left() {
+    lookup_.later_tiers_of(left_, left_ranges_, pixels_left_);
+    for (std::size_t j = 0; j < left_.size; ++j) take_(left_tags_[j], pixels_left_[j], left_ranges_[j]);
+    left_.size = 0;
+  }
+
+  const PixelLookup& lookup_;
+  Take take_;
+  PixelLookup::Group fresh_, left_;  // points waiting for tier 1, and those it left
+  std::array<std::uint32_t, kGroup> fresh_tags_{}, left_tags_{}, pixels_{}, pixels_left_{};
+  std::array<double, kGroup> ranges_{}, left_ranges_{};
+};
+
+}  // namespace eco::detail
