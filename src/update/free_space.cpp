@@ -7,6 +7,7 @@
 // into the pixel lookup (full groups across leaves) and noting the visited nodes; the second
 // rewrites only the leaves that lost points, and the nodes above them.
 
+#include "update/clearing_rule.hpp"
 #include "update/pixel_stream.hpp"
 #include "update/range_image.hpp"
 #include "update/stages.hpp"
@@ -64,15 +65,16 @@ class Sight {
   double max_range_ = 0.0;
 };
 
-/// The scan's verdict on held points: seen through (1) or not (0).
+/// The scan's verdict on held points: seen through or not.
 class SeenThrough {
  public:
   SeenThrough(const RangeImage& image, double margin) : image_(image), margin_(margin) {}
-  /// For a held point at `pixel` (or kOutside), `range` from the sensor: a pixel with no return
-  /// around it (kNoReturn) is not evidence of free space.
-  [[nodiscard]] bool operator()(std::uint32_t pixel, double range) const {
-    const double nearest = pixel == PixelLookup::kOutside ? RangeImage::kNoReturn : image_.nearest_around(pixel);
-    return nearest != RangeImage::kNoReturn && nearest > range + margin_;
+  /// For a held point at `pixel` (or kOutside), |v|^2 = `squared_range` from the sensor: a pixel
+  /// with no return around it (kNoReturn) is not evidence of free space.
+  [[nodiscard]] bool operator()(std::uint32_t pixel, double squared_range) const {
+    if (pixel == PixelLookup::kOutside) return false;
+    const double nearest = image_.nearest_around(pixel);
+    return nearest != RangeImage::kNoReturn && lies_beyond(nearest, squared_range, margin_);
   }
 
  private:
@@ -172,9 +174,10 @@ void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vect
   const Sight sight(motion, tree.config().sensor);
   const SeenThrough seen_through(image, tree.config().clearing.margin);
   std::erase_if(displaced, [&](const StoredPoint& s) {
+    const Eigen::Vector3d v = sight.sensor_frame(s.p);
     double range = 0.0;
-    const std::uint32_t pixel = pixels.pixel_of(sight.sensor_frame(s.p), range);
-    if (!seen_through(pixel, range)) return false;
+    const std::uint32_t pixel = pixels.pixel_of(v, range);
+    if (!seen_through(pixel, v.squaredNorm())) return false;
     ++stats.cleared;
     tree.forget(s);
     return true;
@@ -182,9 +185,10 @@ void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vect
   if (tree.root() == kNone) return;
   std::vector<Visit> visits;
   Verdicts verdicts;
-  PixelStream stream(pixels, [&](std::uint32_t tag, std::uint32_t pixel, double range) {
-    verdicts[tag] = seen_through(pixel, range) ? 1 : 0;
-  });
+  const auto judge = [&](std::uint32_t tag, std::uint32_t pixel, double squared_range) {
+    verdicts[tag] = seen_through(pixel, squared_range) ? 1 : 0;
+  };
+  PixelStream<decltype(judge), PixelLookup::Reach::SquaredRange> stream(pixels, judge);
   look_into(tree, tree.root(), kNone, sight, stream, visits, verdicts);
   stream.flush();
   const std::vector<std::uint32_t> plan = plan_clearing(tree, visits, verdicts, stats);

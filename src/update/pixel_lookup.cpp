@@ -1,6 +1,7 @@
 #include "update/pixel_lookup.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "core/vector_clones.hpp"
 #include "update/fast_atan2.hpp"
@@ -13,6 +14,17 @@ constexpr double kPi = 3.14159265358979323846;
 /// The pseudo-angle of the direction at `degrees` of azimuth (a wall's).
 double pseudo_angle_at(double degrees) {
   return PixelLookup::pseudo_angle(std::cos(degrees * kPi / 180.0), std::sin(degrees * kPi / 180.0));
+}
+
+/// The greatest s whose square root rounds to `max` or below (a square root correctly rounded
+/// rises with its argument): sqrt(s) > max exactly when s > it.
+double largest_square_within(double max) {
+  if (!(max < std::numeric_limits<double>::infinity())) return max;
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  double s = max * max;
+  while (s > 0.0 && std::sqrt(s) > max) s = std::nextafter(s, 0.0);
+  while (std::sqrt(std::nextafter(s, kInfinity)) <= max) s = std::nextafter(s, kInfinity);
+  return s;
 }
 
 /// For `bins` equal bins from walls.front(), the last wall at or below each bin's lower end (never the
@@ -34,12 +46,14 @@ std::vector<double> starts(const std::vector<double>& walls, std::size_t bins, d
 /// kOutside, or kUndecided, in vector code (core/vector_clones.hpp; |v| rounded as Eigen's norm()
 /// rounds it: (x^2 + y^2) + z^2). Every comparison is false for NaN (a point straight up or down,
 /// or the origin), which leaves it undecided.
-ECO_VECTOR_CLONES
-void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, std::array<std::uint32_t, kGroup>& pixels,
-                             std::array<double, kGroup>& ranges) {
+template <PixelLookup::Reach kReach>
+[[gnu::always_inline]] inline void PixelLookup::first_tier_lanes(const Group& points, const FirstTierWalls& w,
+                                                                 std::array<std::uint32_t, kGroup>& pixels,
+                                                                 std::array<double, kGroup>& reaches) {
   for (std::size_t i = 0; i < kGroup; ++i) {
     const double dx = points.x[i], dy = points.y[i], dz = points.z[i];
-    ranges[i] = std::sqrt((dx * dx + dy * dy) + dz * dz);
+    const double squared = (dx * dx + dy * dy) + dz * dz;
+    reaches[i] = kReach == Reach::Range ? std::sqrt(squared) : squared;
     const float x = float(dx), y = float(dy), z = float(dz);
     const float elevation = fast_atan2_degrees(z, std::sqrt(x * x + y * y)), azimuth = fast_atan2_degrees(y, x);
     // rows and columns counted from the field of view's bottom and from -180 deg, held where an
@@ -51,11 +65,23 @@ void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, std::
     const std::uint32_t decided = (elevation >= w.low) & (elevation <= w.high) & (r_part >= w.row_guard) &
                          (r_part <= w.row_room) & (c >= w.column_guard) & (c <= w.seam) & (c_part >= w.column_guard) &
                          (c_part <= w.column_room);
-    const std::uint32_t outside = (ranges[i] > w.max_range) | (elevation < w.below) | (elevation > w.above);
+    const std::uint32_t outside = (squared > w.max_squared_range) | (elevation < w.below) | (elevation > w.above);
     const std::uint32_t pixel = std::uint32_t(row) * w.columns + std::uint32_t(column);
     // kOutside where outside (all ones), else the pixel where decided, else kUndecided
     pixels[i] = (0u - outside) | ((0u - decided) & pixel) | ((decided - 1u) & kUndecided);
   }
+}
+
+ECO_VECTOR_CLONES
+void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, std::array<std::uint32_t, kGroup>& pixels,
+                             std::array<double, kGroup>& ranges) {
+  first_tier_lanes<Reach::Range>(points, w, pixels, ranges);
+}
+
+ECO_VECTOR_CLONES
+void PixelLookup::first_tier_squared(const Group& points, const FirstTierWalls& w,
+                                     std::array<std::uint32_t, kGroup>& pixels, std::array<double, kGroup>& squared) {
+  first_tier_lanes<Reach::SquaredRange>(points, w, pixels, squared);
 }
 
 /// Tier 2 for a whole group (every lane), in vector code where the compiler manages it.
@@ -101,7 +127,7 @@ PixelLookup::PixelLookup(const SensorModel& sensor)
   fast_ = {f(min), f(min + kAngleGuard), f(max - kAngleGuard), f(min - kAngleGuard), f(max + kAngleGuard),
            f(1.0 / sensor.vertical_resolution), f(1.0 / sensor.horizontal_resolution), f(rows_guard), f(1.0 - rows_guard),
            f(columns_guard), f(1.0 - columns_guard), f(360.0 / sensor.horizontal_resolution - columns_guard),
-           std::uint32_t(columns_), sensor.max_range};
+           std::uint32_t(columns_), largest_square_within(sensor.max_range)};
 }
 
 void PixelLookup::later_tiers_of(const Group& points, const std::array<double, kGroup>& ranges,

@@ -60,11 +60,15 @@ class PixelLookup {
   };
   /// Tier 1's verdict on a point it leaves to tiers 2 and 3 (no pixel has this index: kMaxPixels).
   static constexpr std::uint32_t kUndecided = kOutside - 1;
+  /// What tier 1 hands back with each pixel: the range |v|, or its square (as rounded before the
+  /// square root), for a caller that can compare it without the root.
+  enum class Reach { Range, SquaredRange };
   /// PixelStream's parts. Tier 1 for a group: each point's pixel, kOutside, or kUndecided, and its
-  /// range |v| (all of them).
-  void first_tier_of(const Group& points, std::array<std::uint32_t, kGroup>& pixels,
-                     std::array<double, kGroup>& ranges) const {
-    first_tier(points, fast_, pixels, ranges);
+  /// reach (all of them).
+  void first_tier_of(const Group& points, std::array<std::uint32_t, kGroup>& pixels, std::array<double, kGroup>& reaches,
+                     Reach reach) const {
+    if (reach == Reach::Range) return first_tier(points, fast_, pixels, reaches);
+    first_tier_squared(points, fast_, pixels, reaches);
   }
   /// Tiers 2 and 3 for a group whose points' ranges are `ranges`: each point's pixel or kOutside.
   void later_tiers_of(const Group& points, const std::array<double, kGroup>& ranges,
@@ -154,12 +158,18 @@ class PixelLookup {
     float row_guard, row_room, column_guard, column_room;  // the guard in rows and columns, and 1 - it
     float seam;                                            // 360 deg in columns, less the guard
     std::uint32_t columns;
-    double max_range;
+    double max_squared_range;  // the greatest |v|^2 whose root rounds to max_range or below
   };
   /// Static, its walls handed in: a member's fields could alias the outputs for all the compiler
-  /// knows, and it would not vectorise the loop.
+  /// knows, and it would not vectorise the loop. The same lanes (first_tier_lanes), handing back
+  /// ranges or their squares.
   static void first_tier(const Group& points, const FirstTierWalls& walls, std::array<std::uint32_t, kGroup>& pixels,
                          std::array<double, kGroup>& ranges);
+  static void first_tier_squared(const Group& points, const FirstTierWalls& walls,
+                                 std::array<std::uint32_t, kGroup>& pixels, std::array<double, kGroup>& squared);
+  template <Reach kReach>
+  static void first_tier_lanes(const Group& points, const FirstTierWalls& walls,
+                               std::array<std::uint32_t, kGroup>& pixels, std::array<double, kGroup>& reaches);
 
   SensorModel sensor_;
   FirstTierWalls fast_{};

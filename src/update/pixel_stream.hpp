@@ -7,14 +7,16 @@
 #include "update/pixel_lookup.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <utility>
 
 namespace eco::detail {
 
-/// Calls take(tag, pixel, range) for every point pushed — its pixel as PixelLookup::pixel_of gives
-/// it (or kOutside) and |v| — not in the order pushed; flush() hands back the last ones.
-template <class Take>
+/// Calls take(tag, pixel, reach) for every point pushed — its pixel as PixelLookup::pixel_of gives
+/// it (or kOutside) and its range |v| (kReach Range) or the square of it (SquaredRange) — not in
+/// the order pushed; flush() hands back the last ones.
+template <class Take, PixelLookup::Reach kReach = PixelLookup::Reach::Range>
 class PixelStream {
  public:
   static constexpr std::size_t kGroup = PixelLookup::kGroup;
@@ -35,31 +37,35 @@ class PixelStream {
 
  private:
   void run_fresh() {
-    lookup_.first_tier_of(fresh_, pixels_, ranges_);
+    lookup_.first_tier_of(fresh_, pixels_, reaches_, kReach);
     for (std::size_t i = 0; i < fresh_.size; ++i) {
       if (pixels_[i] != PixelLookup::kUndecided) {
-        take_(fresh_tags_[i], pixels_[i], ranges_[i]);
+        take_(fresh_tags_[i], pixels_[i], reaches_[i]);
         continue;
       }
       const std::size_t j = left_.size++;
       left_.x[j] = fresh_.x[i], left_.y[j] = fresh_.y[i], left_.z[j] = fresh_.z[i];
-      left_ranges_[j] = ranges_[i];
+      left_reaches_[j] = reaches_[i];
       left_tags_[j] = fresh_tags_[i];
       if (left_.size == kGroup) run_left();
     }
     fresh_.size = 0;
   }
   void run_left() {
-    lookup_.later_tiers_of(left_, left_ranges_, pixels_left_);
-    for (std::size_t j = 0; j < left_.size; ++j) take_(left_tags_[j], pixels_left_[j], left_ranges_[j]);
+    std::array<double, kGroup> ranges = left_reaches_;
+    if constexpr (kReach == PixelLookup::Reach::SquaredRange) {
+      for (double& r : ranges) r = std::sqrt(r);
+    }
+    lookup_.later_tiers_of(left_, ranges, left_pixels_);
+    for (std::size_t j = 0; j < left_.size; ++j) take_(left_tags_[j], left_pixels_[j], left_reaches_[j]);
     left_.size = 0;
   }
 
   const PixelLookup& lookup_;
   Take take_;
   PixelLookup::Group fresh_, left_;  // points waiting for tier 1, and those it left
-  std::array<std::uint32_t, kGroup> fresh_tags_{}, left_tags_{}, pixels_{}, pixels_left_{};
-  std::array<double, kGroup> ranges_{}, left_ranges_{};
+  std::array<std::uint32_t, kGroup> fresh_tags_{}, left_tags_{}, pixels_{}, left_pixels_{};
+  std::array<double, kGroup> reaches_{}, left_reaches_{};
 };
 
 }  // namespace eco::detail

@@ -59,6 +59,44 @@ std::vector<Eigen::Vector3d> on_walls(const SensorModel& sensor, std::mt19937& r
   return out;
 }
 
+/// Streamed (tier 1 in groups, the points it leaves in groups of their own; handing back ranges and
+/// squared ranges), each point's pixel and reach as pixel_of's one at a time, every point once.
+void expect_streamed_as_one_at_a_time(const PixelLookup& lookup, const std::vector<Eigen::Vector3d>& points) {
+  const auto stream_all = [&](auto& stream) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      stream.push(points[i].x(), points[i].y(), points[i].z(), std::uint32_t(i));
+      if (i % 1000 == 999) stream.flush();  // groups of every size come from flushes too
+    }
+    stream.flush();
+  };
+  std::vector<std::uint32_t> pixels(points.size(), PixelLookup::kUndecided), squared_pixels = pixels;
+  std::vector<double> ranges(points.size(), -1.0), squared = ranges;
+  std::size_t taken = 0, squared_taken = 0;
+  PixelStream stream(lookup, [&](std::uint32_t tag, std::uint32_t pixel, double range) {
+    pixels.at(tag) = pixel;
+    ranges.at(tag) = range;
+    ++taken;
+  });
+  const auto take_squared = [&](std::uint32_t tag, std::uint32_t pixel, double reach) {
+    squared_pixels.at(tag) = pixel;
+    squared.at(tag) = reach;
+    ++squared_taken;
+  };
+  PixelStream<decltype(take_squared), PixelLookup::Reach::SquaredRange> squared_stream(lookup, take_squared);
+  stream_all(stream);
+  stream_all(squared_stream);
+  EXPECT_EQ(taken, points.size());
+  EXPECT_EQ(squared_taken, points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    double range = 0.0;
+    const std::uint32_t exact = lookup.exact_pixel_of(points[i], range);
+    ASSERT_EQ(pixels[i], exact) << points[i].transpose();
+    ASSERT_EQ(squared_pixels[i], exact) << points[i].transpose();
+    ASSERT_TRUE(same(ranges[i], range)) << ranges[i] << " " << range;
+    ASSERT_TRUE(same(squared[i], points[i].squaredNorm())) << squared[i] << " " << points[i].squaredNorm();
+  }
+}
+
 TEST(PixelLookup, FastPixelsAreTheFormulasPixels) {
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> u(-120.0, 120.0), tiny(-1e-9, 1e-9);
@@ -100,27 +138,32 @@ TEST(PixelLookup, FastPixelsAreTheFormulasPixels) {
       inside += fast != PixelLookup::kOutside ? 1 : 0;
     }
     EXPECT_GT(inside, points.size() / 4);
-    // streamed (tier 1 in groups, the points it leaves in groups of their own), each point's
-    // pixel and range as one at a time, every point handed back once
-    std::vector<std::uint32_t> pixels(points.size(), PixelLookup::kUndecided);
-    std::vector<double> ranges(points.size(), -1.0);
-    std::size_t taken = 0;
-    PixelStream stream(lookup, [&](std::uint32_t tag, std::uint32_t pixel, double range) {
-      pixels.at(tag) = pixel;
-      ranges.at(tag) = range;
-      ++taken;
-    });
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      stream.push(points[i].x(), points[i].y(), points[i].z(), std::uint32_t(i));
-      if (i % 1000 == 999) stream.flush();  // groups of every size come from flushes too
+    expect_streamed_as_one_at_a_time(lookup, points);
+  }
+}
+
+/// Points at the sensor's maximum range, to the last double, and either side of it.
+TEST(PixelLookup, PointsAtTheMaximumRangeAreInsideOrOutsideAsTheFormulasSay) {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> azimuth(-kPi, kPi), elevation(-24.0, 1.0);
+  std::uniform_int_distribution<int> steps(-8, 8);
+  for (const double max_range : {120.0, 80.3, 1.0 / 3.0}) {
+    SensorModel sensor;
+    sensor.max_range = max_range;
+    const PixelLookup lookup(sensor);
+    std::vector<Eigen::Vector3d> points;
+    std::size_t inside = 0, outside = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const double a = azimuth(rng), e = elevation(rng) * kPi / 180;
+      Eigen::Vector3d v(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
+      v *= max_range / v.norm();
+      for (int k = steps(rng); k != 0; k += k > 0 ? -1 : 1) v.x() = std::nextafter(v.x(), k > 0 ? 1e9 : -1e9);
+      points.push_back(v);
+      (v.norm() > max_range ? outside : inside) += 1;
     }
-    stream.flush();
-    EXPECT_EQ(taken, points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      double range = 0.0;
-      ASSERT_EQ(pixels[i], lookup.exact_pixel_of(points[i], range)) << points[i].transpose();
-      ASSERT_TRUE(same(ranges[i], range)) << ranges[i] << " " << range;
-    }
+    EXPECT_GT(inside, 2000u);
+    EXPECT_GT(outside, 2000u);
+    expect_streamed_as_one_at_a_time(lookup, points);
   }
 }
 
