@@ -10,6 +10,7 @@
 #include "update/clearing_rule.hpp"
 #include "update/pixel_stream.hpp"
 #include "update/range_image.hpp"
+#include "update/sensor_frame.hpp"
 #include "update/stages.hpp"
 #include "update/subtree_filter.hpp"
 
@@ -25,15 +26,14 @@ class Sight {
   Sight(const Motion& motion, const SensorModel& sensor)
       : sensor_R_world_(motion.pose.linear().transpose()),
         sensor_from_anchor_(motion.anchor - motion.pose.translation()),
+        pose_(sensor_R_world_, sensor_from_anchor_),
         up_(sensor_R_world_.row(2).transpose()),
         sin_fov_min_(std::sin(sensor.vertical_fov_min * kRadiansPerDegree)),
         sin_fov_max_(std::sin(sensor.vertical_fov_max * kRadiansPerDegree)),
         max_range_(sensor.max_range) {}
 
-  /// The held point at stored coordinates `p` in the sensor's frame.
-  [[nodiscard]] Eigen::Vector3d sensor_frame(const std::array<float, 3>& p) const {
-    return sensor_R_world_ * (sensor_from_anchor_ + Eigen::Vector3d(double(p[0]), double(p[1]), double(p[2])));
-  }
+  /// The sensor's frame: held points' stored coordinates into it.
+  [[nodiscard]] const SensorPose& pose() const { return pose_; }
   /// Whether some point of `box` (anchor frame) may lie in the sensor's image.
   [[nodiscard]] bool may_see(const Aabb& box) const {
     const Eigen::Vector3d sensor = -sensor_from_anchor_;  // in the anchor frame
@@ -60,6 +60,7 @@ class Sight {
 
   Eigen::Matrix3d sensor_R_world_;
   Eigen::Vector3d sensor_from_anchor_;  // anchor - sensor position: stored point + this = sensor-relative, world axes
+  SensorPose pose_;
   Eigen::Vector3d up_;                  // the sensor's z axis, world axes
   double sin_fov_min_ = 0.0, sin_fov_max_ = 0.0;
   double max_range_ = 0.0;
@@ -82,39 +83,76 @@ class SeenThrough {
   double margin_ = 0.0;
 };
 
-/// A node the first pass looked into, in the order it did (preorder): a leaf's points have
-/// verdicts [first, first + count) in Verdicts.
+/// A node the first pass looked into, in the order it did (preorder). A leaf's points (`points`
+/// of them; 0 for an inner node) lie in its block's columns, x from `x`, y and z `stride` floats
+/// further each, and have verdicts [first, first + points).
 struct Visit {
   std::uint32_t id;
   std::uint32_t parent;  // its parent's Visit, kNone for the root
+  std::uint32_t points;
   std::uint32_t first;
   std::uint32_t seen;    // points seen through in the subtree (filled after the pass)
+  std::uint32_t stride;
+  const float* x;
 };
 using Verdicts = std::vector<char>;
 
-/// Pass 1: streams the points of every leaf under `id` that the sensor may see into `stream`
-/// (tagged with their verdicts' index) and notes the nodes looked into in `visits`.
-template <class Stream>
-void look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, const Sight& sight, Stream& stream,
-               std::vector<Visit>& visits, Verdicts& verdicts) {
+/// Pass 1, the nodes: appends to `visits` the nodes under `id` whose bounds the sensor may see;
+/// returns the points their leaves hold, numbered from `first`.
+std::uint32_t look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, const Sight& sight,
+                        std::vector<Visit>& visits, std::uint32_t first) {
   const Node& n = t.nodes()[id];
-  if (n.count == 0 || !sight.may_see(n.bounds)) return;
-  const std::uint32_t here = std::uint32_t(visits.size());
-  const std::uint32_t first = std::uint32_t(verdicts.size());
-  visits.push_back({id, parent, first, 0});
+  if (n.count == 0 || !sight.may_see(n.bounds)) return 0;
   if (n.leaf) {
     const PointSpan points = t.points().span(n.link, n.count);
-    verdicts.resize(first + points.size);
-    for (std::uint32_t i = 0; i < points.size; ++i) {
-      const Eigen::Vector3d v = sight.sensor_frame({points.x[i], points.y[i], points.z[i]});
-      stream.push(v.x(), v.y(), v.z(), first + i);
-    }
-    return;
+    visits.push_back({id, parent, n.count, first, 0, std::uint32_t(points.y - points.x), points.x});
+    return n.count;
   }
+  const std::uint32_t here = std::uint32_t(visits.size());
+  visits.push_back({id, parent, 0, first, 0, 0, nullptr});
+  t.nodes().prefetch_children(id);  // their misses overlap
+  std::uint32_t points = 0;
   for (int o = 0; o < 8; ++o) {
     const std::uint32_t child = t.nodes().child(id, o);
-    if (child != kNone) look_into(t, child, here, sight, stream, visits, verdicts);
+    if (child != kNone) points += look_into(t, child, here, sight, visits, first + points);
   }
+  return points;
+}
+
+/// Pass 1, the points: streams every visited leaf's points into `stream`, in the sensor's frame,
+/// tagged with their verdicts' index, a group at a time across leaves; the leaves' columns are
+/// asked for a few leaves ahead.
+template <class Stream>
+void stream_points(const std::vector<Visit>& visits, const SensorPose& pose, Stream& stream) {
+  constexpr std::size_t kAhead = 8;
+  StoredGroup stored;
+  PixelLookup::Group group;
+  std::array<std::uint32_t, PixelLookup::kGroup> tags{};
+  const auto send = [&] {
+    to_sensor_frame(pose, stored, group);
+    stream.push_group(group, tags);
+    stored.size = 0;
+  };
+  for (std::size_t v = 0; v < visits.size(); ++v) {
+    if (v + kAhead < visits.size()) {
+      const Visit& ahead = visits[v + kAhead];
+      for (std::uint32_t column = 0; column < 3 * ahead.stride; column += ahead.stride) {
+        __builtin_prefetch(ahead.x + column);
+        __builtin_prefetch(ahead.x + column + ahead.points - 1);
+      }
+    }
+    const Visit& leaf = visits[v];
+    const float* x = leaf.x;
+    const float* y = x + leaf.stride;
+    const float* z = y + leaf.stride;
+    for (std::uint32_t i = 0; i < leaf.points; ++i) {
+      const std::size_t k = stored.size++;
+      stored.x[k] = x[i], stored.y[k] = y[i], stored.z[k] = z[i];
+      tags[k] = leaf.first + i;
+      if (stored.size == PixelLookup::kGroup) send();
+    }
+  }
+  send();
 }
 
 /// Pass 2's plan from pass 1's visits and verdicts: per node id, 0 where nothing below was seen
@@ -124,11 +162,10 @@ std::vector<std::uint32_t> plan_clearing(const Tree& t, std::vector<Visit>& visi
   std::size_t cleared = 0;
   for (std::size_t v = visits.size(); v-- > 0;) {  // children before their parents
     Visit& visit = visits[v];
-    const Node& n = t.nodes()[visit.id];
-    if (n.leaf) {
-      for (std::uint32_t i = 0; i < n.count; ++i) visit.seen += std::uint32_t(verdicts[visit.first + i]);
-      cleared += visit.seen;
-    }
+    std::uint32_t seen = 0;  // in a leaf
+    for (std::uint32_t i = 0; i < visit.points; ++i) seen += std::uint32_t(verdicts[visit.first + i]);
+    cleared += seen;
+    visit.seen += seen;
     if (visit.parent != kNone) visits[visit.parent].seen += visit.seen;
   }
   stats.cleared += cleared;
@@ -174,7 +211,7 @@ void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vect
   const Sight sight(motion, tree.config().sensor);
   const SeenThrough seen_through(image, tree.config().clearing.margin);
   std::erase_if(displaced, [&](const StoredPoint& s) {
-    const Eigen::Vector3d v = sight.sensor_frame(s.p);
+    const Eigen::Vector3d v = sight.pose().apply(s.p);
     double range = 0.0;
     const std::uint32_t pixel = pixels.pixel_of(v, range);
     if (!seen_through(pixel, v.squaredNorm())) return false;
@@ -189,7 +226,8 @@ void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vect
     verdicts[tag] = seen_through(pixel, squared_range) ? 1 : 0;
   };
   PixelStream<decltype(judge), PixelLookup::Reach::SquaredRange> stream(pixels, judge);
-  look_into(tree, tree.root(), kNone, sight, stream, visits, verdicts);
+  verdicts.resize(look_into(tree, tree.root(), kNone, sight, visits, 0));
+  stream_points(visits, sight.pose(), stream);
   stream.flush();
   const std::vector<std::uint32_t> plan = plan_clearing(tree, visits, verdicts, stats);
   if (plan.empty()) return;

@@ -30,6 +30,10 @@ class PixelStream {
     fresh_tags_[i] = tag;
     if (fresh_.size == kGroup) run_fresh();
   }
+  /// A group of sensor-frame points at once, lane i named tags[i].
+  void push_group(const PixelLookup::Group& points, const std::array<std::uint32_t, kGroup>& tags) {
+    run_first_tier(points, tags);
+  }
   void flush() {
     run_fresh();
     run_left();
@@ -37,19 +41,22 @@ class PixelStream {
 
  private:
   void run_fresh() {
-    lookup_.first_tier_of(fresh_, pixels_, reaches_, kReach);
-    for (std::size_t i = 0; i < fresh_.size; ++i) {
+    run_first_tier(fresh_, fresh_tags_);
+    fresh_.size = 0;
+  }
+  void run_first_tier(const PixelLookup::Group& points, const std::array<std::uint32_t, kGroup>& tags) {
+    lookup_.first_tier_of(points, pixels_, reaches_, kReach);
+    for (std::size_t i = 0; i < points.size; ++i) {
       if (pixels_[i] != PixelLookup::kUndecided) {
-        take_(fresh_tags_[i], pixels_[i], reaches_[i]);
+        take_(tags[i], pixels_[i], reaches_[i]);
         continue;
       }
       const std::size_t j = left_.size++;
-      left_.x[j] = fresh_.x[i], left_.y[j] = fresh_.y[i], left_.z[j] = fresh_.z[i];
+      left_.x[j] = points.x[i], left_.y[j] = points.y[i], left_.z[j] = points.z[i];
       left_reaches_[j] = reaches_[i];
-      left_tags_[j] = fresh_tags_[i];
+      left_tags_[j] = tags[i];
       if (left_.size == kGroup) run_left();
     }
-    fresh_.size = 0;
   }
   void run_left() {
     std::array<double, kGroup> ranges = left_reaches_;

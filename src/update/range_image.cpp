@@ -29,9 +29,15 @@ RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<dou
   PixelStream stream(pixels, [&](std::uint32_t, std::uint32_t pixel, double range) {
     if (pixel != PixelLookup::kOutside) nearest[pixel] = std::min(nearest[pixel], range);
   });
-  for (std::size_t i = 0; i < scan.count; ++i) {  // a return with a non-finite coordinate has no pixel
-    const float* p = scan.data + i * scan.stride;
-    stream.push(p[0], p[1], p[2], 0);
+  PixelLookup::Group group;
+  const std::array<std::uint32_t, PixelLookup::kGroup> tags{};  // unused
+  for (std::size_t begin = 0; begin < scan.count; begin += PixelLookup::kGroup) {
+    group.size = std::min(PixelLookup::kGroup, scan.count - begin);
+    for (std::size_t i = 0; i < group.size; ++i) {  // a return with a non-finite coordinate has no pixel
+      const float* p = scan.data + (begin + i) * scan.stride;
+      group.x[i] = p[0], group.y[i] = p[1], group.z[i] = p[2];
+    }
+    stream.push_group(group, tags);
   }
   stream.flush();
   // The minimum over 3x3 neighbourhoods, separably and in place: three rows' minima along them
