@@ -37,25 +37,29 @@ class Sight {
   /// Whether some point of `box` (anchor frame) may lie in the sensor's image.
   [[nodiscard]] bool may_see(const Aabb& box) const {
     const Eigen::Vector3d sensor = -sensor_from_anchor_;  // in the anchor frame
-    const double nearest = std::sqrt(box.sq_dist({sensor[0], sensor[1], sensor[2]}));
+    const double squared_nearest = box.sq_dist({sensor[0], sensor[1], sensor[2]});
     // widened against rounding: a point's range is computed after the rotation
-    const bool beyond_range = nearest > max_range_ * (1.0 + 1e-9) + 1e-9;
-    return !beyond_range && !outside_field_of_view(box, nearest);
+    const double reach = max_range_ * (1.0 + 1e-9) + 1e-9;
+    return squared_nearest <= reach * reach && !outside_field_of_view(box, squared_nearest);
   }
 
  private:
-  /// Whether every point of `box` (anchor frame; `nearest` [m] from the sensor) lies below or
-  /// above the vertical field of view: sin(elevation) = (p - sensor) . up / |p - sensor|, bounded
-  /// over the box, with a slack far above the rounding of the pixel formulas.
-  [[nodiscard]] bool outside_field_of_view(const Aabb& box, double nearest) const {
+  /// Whether every point of `box` (anchor frame; the square of its distance from the sensor
+  /// `squared_nearest`) lies below or above the vertical field of view: sin(elevation) = (p -
+  /// sensor) . up / |p - sensor|, bounded over the box, with a slack far above the rounding of the
+  /// pixel formulas.
+  [[nodiscard]] bool outside_field_of_view(const Aabb& box, double squared_nearest) const {
     const Eigen::Vector3d lo(box.lo[0], box.lo[1], box.lo[2]), hi(box.hi[0], box.hi[1], box.hi[2]);
     const Eigen::Vector3d centre = 0.5 * (lo + hi) + sensor_from_anchor_;  // from the sensor, world axes
     const Eigen::Vector3d half = 0.5 * (hi - lo);
     const double height = up_.dot(centre), spread = up_.cwiseAbs().dot(half);  // (p - sensor) . up
     const double farthest = (centre.cwiseAbs() + half).norm();
     const double slack = 1e-6 * farthest;
-    if (height + spread + slack < sin_fov_min_ * (sin_fov_min_ <= 0.0 ? farthest : nearest)) return true;
-    return height - spread - slack > sin_fov_max_ * (sin_fov_max_ >= 0.0 ? farthest : nearest);
+    // the box's distance is needed for a field of view wholly above or below the horizon only
+    if (height + spread + slack < sin_fov_min_ * (sin_fov_min_ <= 0.0 ? farthest : std::sqrt(squared_nearest))) {
+      return true;
+    }
+    return height - spread - slack > sin_fov_max_ * (sin_fov_max_ >= 0.0 ? farthest : std::sqrt(squared_nearest));
   }
 
   Eigen::Matrix3d sensor_R_world_;
@@ -156,20 +160,13 @@ void stream_points(const std::vector<Visit>& visits, const SensorPose& pose, Str
 }
 
 /// Pass 2's plan from pass 1's visits and verdicts: per node id, 0 where nothing below was seen
-/// through, else its Visit + 1. Empty when nothing was; counts the points in `stats`.
-std::vector<std::uint32_t> plan_clearing(const Tree& t, std::vector<Visit>& visits, const Verdicts& verdicts,
-                                         UpdateStats& stats) {
-  std::size_t cleared = 0;
+/// through, else its Visit + 1.
+std::vector<std::uint32_t> plan_clearing(const Tree& t, std::vector<Visit>& visits, const Verdicts& verdicts) {
   for (std::size_t v = visits.size(); v-- > 0;) {  // children before their parents
     Visit& visit = visits[v];
-    std::uint32_t seen = 0;  // in a leaf
-    for (std::uint32_t i = 0; i < visit.points; ++i) seen += std::uint32_t(verdicts[visit.first + i]);
-    cleared += seen;
-    visit.seen += seen;
+    for (std::uint32_t i = 0; i < visit.points; ++i) visit.seen += std::uint32_t(verdicts[visit.first + i]);
     if (visit.parent != kNone) visits[visit.parent].seen += visit.seen;
   }
-  stats.cleared += cleared;
-  if (cleared == 0) return {};
   std::vector<std::uint32_t> plan(t.nodes().id_bound(), 0);
   for (std::size_t v = 0; v < visits.size(); ++v) {
     if (visits[v].seen > 0) plan[visits[v].id] = std::uint32_t(v + 1);
@@ -222,15 +219,19 @@ void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vect
   if (tree.root() == kNone) return;
   std::vector<Visit> visits;
   Verdicts verdicts;
+  std::size_t seen = 0;
   const auto judge = [&](std::uint32_t tag, std::uint32_t pixel, double squared_range) {
-    verdicts[tag] = seen_through(pixel, squared_range) ? 1 : 0;
+    const bool through = seen_through(pixel, squared_range);
+    verdicts[tag] = through ? 1 : 0;
+    seen += through ? 1 : 0;
   };
   PixelStream<decltype(judge), PixelLookup::Reach::SquaredRange> stream(pixels, judge);
   verdicts.resize(look_into(tree, tree.root(), kNone, sight, visits, 0));
   stream_points(visits, sight.pose(), stream);
   stream.flush();
-  const std::vector<std::uint32_t> plan = plan_clearing(tree, visits, verdicts, stats);
-  if (plan.empty()) return;
+  stats.cleared += seen;
+  if (seen == 0) return;
+  const std::vector<std::uint32_t> plan = plan_clearing(tree, visits, verdicts);
   Clearing clearing(tree, plan, visits, verdicts);
   if (filter_subtree(tree, tree.root(), clearing) == Filtered::Gone) {
     tree.place_root(tree.root_cell(), tree.lattice());
