@@ -262,7 +262,7 @@ std::size_t Tree::buffer_bytes() const {
   const BatchBuffers& b = batch_buffers_;
   return (scratch_.capacity() + b.scan.capacity() + b.points.capacity()) * sizeof(StoredPoint) +
          (b.slot_of.capacity() + b.group_start.capacity() + b.group_end.capacity()) * sizeof(std::uint32_t) +
-         range_image_buffer_.capacity() * sizeof(double);
+         (clearing_memory_.image.capacity() + clearing_memory_.pixel_tables.capacity()) * sizeof(double);
 }
 
 std::uint32_t Tree::start_node(const Cell& cell, Cell& at) {

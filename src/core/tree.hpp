@@ -140,9 +140,13 @@ class Tree {
   std::size_t judge_density(const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed) {
     return judge_group(density_, density_grid_, cfg_.density_cap, points, n, passed);
   }
-  /// Working memory for free-space clearing's range image (src/update/range_image.hpp), kept so
-  /// that no frame pays for fresh pages; counted in bytes().
-  std::vector<double>& range_image_buffer() { return range_image_buffer_; }
+  /// What free-space clearing keeps between frames (src/update/free_space.cpp), so that no frame
+  /// pays for fresh pages or computes the sensor's tables again; counted in bytes().
+  struct ClearingMemory {
+    std::vector<double> image;         // the range image (src/update/range_image.hpp)
+    std::vector<double> pixel_tables;  // the pixel lookup's walls and bins (src/update/pixel_lookup.hpp)
+  };
+  ClearingMemory& clearing_memory() { return clearing_memory_; }
   /// Fills the start table (where insertion starts) from the current tree at `depth`.
   void rebuild_start_table(int depth);
 
@@ -262,7 +266,7 @@ class Tree {
     std::vector<StoredPoint> scan, points;
     std::vector<std::uint32_t> slot_of, group_start, group_end;
   } batch_buffers_;
-  std::vector<double> range_image_buffer_;
+  ClearingMemory clearing_memory_;
 };
 
 }  // namespace eco::detail

@@ -203,8 +203,9 @@ class Clearing {
 void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint>& displaced,
                       UpdateStats& stats) {
   if (!tree.config().clearing.enabled) return;
-  const PixelLookup pixels(tree.config().sensor);
-  const RangeImage image(pixels, scan, tree.range_image_buffer());
+  Tree::ClearingMemory& memory = tree.clearing_memory();
+  const PixelLookup pixels(tree.config().sensor, memory.pixel_tables);
+  const RangeImage image(pixels, scan, memory.image);
   const Sight sight(motion, tree.config().sensor);
   const SeenThrough seen_through(image, tree.config().clearing.margin);
   std::erase_if(displaced, [&](const StoredPoint& s) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <span>
 
 #include "core/vector_clones.hpp"
 #include "update/fast_atan2.hpp"
@@ -27,17 +28,54 @@ double largest_square_within(double max) {
   return s;
 }
 
-/// For `bins` equal bins from walls.front(), the last wall at or below each bin's lower end (never the
-/// last two: the one closing the range and the sentinel).
-std::vector<double> starts(const std::vector<double>& walls, std::size_t bins, double per_unit) {
-  std::vector<double> start(bins);
-  std::uint32_t i = 0;
-  for (std::size_t b = 0; b < bins; ++b) {
+/// Fills `start`: for its bins, equal from walls.front() (`per_unit` to a unit), the last wall at
+/// or below each bin's lower end (never the last two: the one closing the range and the sentinel).
+void fill_starts(std::span<const double> walls, std::span<double> start, double per_unit) {
+  std::size_t i = 0;
+  for (std::size_t b = 0; b < start.size(); ++b) {
     const double lower = walls.front() + double(b) / per_unit;
     while (i + 3 < walls.size() && walls[i + 1] <= lower) ++i;
     start[b] = double(i);
   }
-  return start;
+}
+
+/// The tables' layout: the sensor model they were built for, then the row walls (rows + 2: the
+/// field of view's top and +infinity close them), the column walls (columns + 2: 4, the seam, and
+/// +infinity), the column bins' starts (4 a column), the row bins' starts (to the end).
+constexpr std::size_t kHeader = 5;
+std::array<double, kHeader> header_of(const SensorModel& s) {
+  return {s.vertical_fov_min, s.vertical_fov_max, s.vertical_resolution, s.horizontal_resolution, s.max_range};
+}
+
+/// Builds the tables for `sensor` (rows and columns of it) in `tables`.
+void build_tables(const SensorModel& sensor, int rows, int columns, std::vector<double>& tables) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  const std::array<double, kHeader> header = header_of(sensor);
+  tables.assign(header.begin(), header.end());
+  for (int r = 0; r < rows; ++r) {
+    tables.push_back(std::sin((sensor.vertical_fov_min + r * sensor.vertical_resolution) * kPi / 180.0));
+  }
+  const double fov_top = std::sin(sensor.vertical_fov_max * kPi / 180.0);
+  tables.insert(tables.end(), {fov_top, kInfinity});
+  const std::size_t column_walls = tables.size();
+  for (int c = 0; c < columns; ++c) tables.push_back(pseudo_angle_at(-180.0 + c * sensor.horizontal_resolution));
+  tables[column_walls] = 0.0;  // -180 deg, whatever sin(-pi) rounds to
+  tables.insert(tables.end(), {4.0, kInfinity});
+  // Bins narrower than the narrowest pixel hold one wall at most. A column spans at least half its
+  // width in radians of pseudo-angle (the slope is 1/2 to 1), so 4 bins a column suffice; a row's
+  // sine span shrinks with cos(elevation): the bins follow its narrowest row, within bounds.
+  double narrowest = kInfinity;  // of the whole rows (the top one may be a sliver)
+  for (int r = 0; r + 1 < rows; ++r) narrowest = std::min(narrowest, tables[kHeader + r + 1] - tables[kHeader + r]);
+  const double span = fov_top - tables[kHeader];
+  const double wanted = std::ceil(2.0 * span / std::max(narrowest, 1e-300));
+  const std::size_t column_start = tables.size(), column_bins = 4 * std::size_t(columns);
+  const std::size_t row_start = column_start + column_bins;
+  tables.resize(row_start + std::size_t(std::clamp(wanted, 4.0 * rows, 16.0 * rows + 16.0)));
+  const std::span<const double> row_walls(tables.data() + kHeader, std::size_t(rows) + 2);
+  const std::span<const double> columns_walls(tables.data() + column_walls, std::size_t(columns) + 2);
+  fill_starts(columns_walls, std::span(tables.data() + column_start, column_bins), double(columns));
+  const std::span<double> row_starts(tables.data() + row_start, tables.size() - row_start);
+  fill_starts(row_walls, row_starts, double(row_starts.size()) / span);
 }
 
 }  // namespace
@@ -91,33 +129,24 @@ void PixelLookup::second_tier(const Group& points, const std::array<double, kGro
   for (std::size_t i = 0; i < kGroup; ++i) pixels[i] = second_tier_lane(walls, points.x[i], points.y[i], points.z[i], ranges[i]);
 }
 
-PixelLookup::PixelLookup(const SensorModel& sensor)
+PixelLookup::PixelLookup(const SensorModel& sensor) : PixelLookup(sensor, own_tables_) {}
+
+PixelLookup::PixelLookup(const SensorModel& sensor, std::vector<double>& tables)
     : sensor_(sensor), rows_(sensor.rows()), columns_(sensor.columns()) {
   static_assert(kAngleGuard > 2 * kFastAtan2Error, "tier 1's guard must cover its arctangent's error");
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < rows_; ++r) {
-    row_walls_.push_back(std::sin((sensor.vertical_fov_min + r * sensor.vertical_resolution) * kPi / 180.0));
+  const std::size_t row_walls = std::size_t(rows_) + 2, column_walls = std::size_t(columns_) + 2;
+  const std::size_t column_bins = 4 * std::size_t(columns_);
+  const std::size_t row_start = kHeader + row_walls + column_walls + column_bins;
+  const std::array<double, kHeader> header = header_of(sensor);
+  if (!(tables.size() > row_start && std::equal(header.begin(), header.end(), tables.begin()))) {
+    build_tables(sensor, rows_, columns_, tables);
   }
-  const double fov_top = std::sin(sensor.vertical_fov_max * kPi / 180.0);
-  row_walls_.insert(row_walls_.end(), {fov_top, kInfinity});
-  for (int c = 0; c < columns_; ++c) column_walls_.push_back(pseudo_angle_at(-180.0 + c * sensor.horizontal_resolution));
-  column_walls_.front() = 0.0;  // -180 deg, whatever sin(-pi) rounds to
-  column_walls_.insert(column_walls_.end(), {4.0, kInfinity});
-  // Bins narrower than the narrowest pixel hold one wall at most. A column spans at least half its
-  // width in radians of pseudo-angle (the slope is 1/2 to 1), so 4 bins a column suffice; a row's
-  // sine span shrinks with cos(elevation): the bins follow its narrowest row, within bounds.
-  const double column_bins_per_unit = double(columns_);
-  column_start_ = starts(column_walls_, 4 * std::size_t(columns_), column_bins_per_unit);
-  double narrowest = kInfinity;  // of the whole rows (the top one may be a sliver)
-  for (int r = 0; r + 1 < rows_; ++r) narrowest = std::min(narrowest, row_walls_[r + 1] - row_walls_[r]);
-  const double span = fov_top - row_walls_.front();
-  const double wanted = std::ceil(2.0 * span / std::max(narrowest, 1e-300));
-  const std::size_t row_bins = std::size_t(std::clamp(wanted, 4.0 * rows_, 16.0 * rows_ + 16.0));
-  const double row_bins_per_unit = double(row_bins) / span;
-  row_start_ = starts(row_walls_, row_bins, row_bins_per_unit);
-  second_ = {{row_walls_.data(), row_start_.data(), row_start_.size(), row_bins_per_unit},
-             {column_walls_.data(), column_start_.data(), column_start_.size(), column_bins_per_unit},
-             row_walls_.front(),
+  const double* row_wall = tables.data() + kHeader;
+  const double fov_top = row_wall[rows_];
+  const std::size_t row_bins = tables.size() - row_start;
+  second_ = {{row_wall, tables.data() + row_start, row_bins, double(row_bins) / (fov_top - row_wall[0])},
+             {row_wall + row_walls, row_wall + row_walls + column_walls, column_bins, double(columns_)},
+             row_wall[0],
              fov_top,
              sensor.max_range,
              std::uint32_t(columns_)};

@@ -35,7 +35,11 @@ class PixelLookup {
   static constexpr std::uint32_t kOutside = std::numeric_limits<std::uint32_t>::max();
 
   explicit PixelLookup(const SensorModel& sensor);
-  PixelLookup(const PixelLookup&) = delete;  // its walls point into its own storage
+  /// The same, its walls and bins built in `tables` — or found there, built for the same sensor by
+  /// an earlier lookup: the caller keeps them between frames, so that no frame computes them again
+  /// (a few thousand sines and cosines) — and read there while it lives.
+  PixelLookup(const SensorModel& sensor, std::vector<double>& tables);
+  PixelLookup(const PixelLookup&) = delete;  // its walls point into its tables
   PixelLookup& operator=(const PixelLookup&) = delete;
 
   /// The pixel (row * columns + column) of the sensor-frame point `v`, or kOutside; `range` gets
@@ -174,9 +178,8 @@ class PixelLookup {
   SensorModel sensor_;
   FirstTierWalls fast_{};
   int rows_ = 0, columns_ = 0;
-  std::vector<double> row_walls_, column_walls_;          // SecondTierWalls' storage
-  std::vector<double> row_start_, column_start_;         // SecondTierWalls' storage
-  SecondTierWalls second_;
+  std::vector<double> own_tables_;  // the tables, unless the caller keeps them
+  SecondTierWalls second_;          // in the tables
 };
 
 }  // namespace eco::detail

@@ -167,6 +167,30 @@ TEST(PixelLookup, PointsAtTheMaximumRangeAreInsideOrOutsideAsTheFormulasSay) {
   }
 }
 
+/// Tables kept by the caller between lookups are found again for the same sensor, untouched, and
+/// built anew for another; every lookup answers as the formulas do.
+TEST(PixelLookup, TablesKeptBetweenLookupsServeTheSensorTheyWereBuiltFor) {
+  SensorModel wide, fine;
+  wide.horizontal_resolution = 0.7;
+  wide.vertical_fov_min = -40.0;
+  fine.vertical_resolution = 0.1;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-60.0, 60.0);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 20000; ++i) points.emplace_back(u(rng), u(rng), 0.3 * u(rng));
+  std::vector<double> tables;
+  for (const SensorModel* sensor : {&wide, &wide, &fine, &wide}) {
+    const PixelLookup lookup(*sensor, tables);
+    const PixelLookup fresh(*sensor);
+    for (const Eigen::Vector3d& v : points) {
+      double range = 0.0, fresh_range = 0.0;
+      const std::uint32_t pixel = lookup.pixel_of(v, range);
+      ASSERT_EQ(pixel, lookup.exact_pixel_of(v)) << v.transpose();
+      ASSERT_EQ(pixel, fresh.pixel_of(v, fresh_range)) << v.transpose();
+    }
+  }
+}
+
 /// A very narrow field of view cut into very fine rows: a point below or above it lies billions of
 /// rows away, more than an int holds; the lookup still answers as the formulas do.
 TEST(PixelLookup, PointsFarOutsideANarrowFieldOfViewAreOutside) {
