@@ -28,9 +28,10 @@ inline std::uint32_t within(const FloatBox& b, float x, float y, float z) {
          std::uint32_t(y <= b.hi[1]) & std::uint32_t(z >= b.lo[2]) & std::uint32_t(z <= b.hi[2]);
 }
 
-/// admit_group for points `kStride` floats apart (0: scan.stride, known only at run time);
-/// inlined, so that each of admit_group's clones gets its own vector code.
-template <std::size_t kStride>
+/// admit_group for points `kStride` floats apart (0: scan.stride, known only at run time), with or
+/// without a previous box to leave out (AllInBox has none: its test is not computed); inlined, so
+/// that each of admit_group's clones gets its own vector code.
+template <std::size_t kStride, bool kPrevious>
 [[gnu::always_inline]] inline void admit_lanes(const AdmissionFrame& frame, ScanView scan, std::size_t begin, std::size_t n, AdmittedGroup& out) {
   const std::size_t stride = kStride != 0 ? kStride : scan.stride;
   const float* data = scan.data + begin * stride;
@@ -52,7 +53,8 @@ template <std::size_t kStride>
     // s - s is 0 for a finite s, NaN otherwise
     const std::uint32_t is_finite =
         std::uint32_t(s[0] - s[0] == 0.0f) & std::uint32_t(s[1] - s[1] == 0.0f) & std::uint32_t(s[2] - s[2] == 0.0f);
-    const std::uint32_t in = is_finite & within(frame.box, p0, p1, p2) & ~within(frame.previous, p0, p1, p2) & 1u;
+    const std::uint32_t fresh = kPrevious ? ~within(frame.previous, p0, p1, p2) & 1u : 1u;
+    const std::uint32_t in = is_finite & within(frame.box, p0, p1, p2) & fresh;
     admitted[i] = std::uint8_t(in);
     finite += is_finite;
     taken += in;
@@ -74,10 +76,17 @@ template <std::size_t kStride>
 
 ECO_WIDE_VECTOR_CLONES
 void admit_group(const AdmissionFrame& frame, ScanView scan, std::size_t begin, std::size_t n, AdmittedGroup& out) {
+  if (frame.has_previous) {
+    switch (scan.stride) {
+      case 3: return admit_lanes<3, true>(frame, scan, begin, n, out);
+      case 4: return admit_lanes<4, true>(frame, scan, begin, n, out);
+      default: return admit_lanes<0, true>(frame, scan, begin, n, out);
+    }
+  }
   switch (scan.stride) {
-    case 3: return admit_lanes<3>(frame, scan, begin, n, out);
-    case 4: return admit_lanes<4>(frame, scan, begin, n, out);
-    default: return admit_lanes<0>(frame, scan, begin, n, out);
+    case 3: return admit_lanes<3, false>(frame, scan, begin, n, out);
+    case 4: return admit_lanes<4, false>(frame, scan, begin, n, out);
+    default: return admit_lanes<0, false>(frame, scan, begin, n, out);
   }
 }
 

@@ -37,6 +37,7 @@ struct AdmissionFrame {
   std::array<double, 3> anchor{};                   // the precision origin
   FloatBox box;                                     // Box(p_t), anchor frame
   FloatBox previous;                                // Box(p_{t-1}) under ShiftInOnly, else empty
+  bool has_previous = false;                        // whether `previous` is one
 };
 
 /// One group's verdicts: the admitted points' stored coordinates and scan indices, in scan
@@ -94,6 +95,7 @@ struct Admission {
     }
     f.box = FloatBox::of(box);
     if (previous) f.previous = FloatBox::of(*previous);
+    f.has_previous = previous.has_value();
     return f;
   }
 };
