@@ -91,7 +91,7 @@ void expect_same_attributes(const EgoOctree& tree, const Oracle& oracle, std::mt
     return sorted_ids(out);
   };
   for (const Eigen::Vector3d& q : query_points(tree, rng, 6)) {
-    for (const std::size_t k : {1u, 8u}) {
+    for (const std::size_t k : {1u, 8u, 40u}) {  // 40: beyond the results kept pending
       const std::vector<double> distances = oracle.knn_sq_dists(q, k);
       const std::vector<Neighbor> found = tree.knn(q, k);
       std::vector<std::uint32_t> ids(k);
