@@ -1,21 +1,22 @@
 #pragma once
-// Pixels for many points, each tier of PixelLookup on full groups: points are handed in one at a
-// time with a tag; tier 1 runs on each group of kGroup as it fills, and the points it leaves
-// (the simulator casts one ray in ten on a column's wall) wait for a group of their own for tiers
-// 2 and 3, instead of taking them one by one beside it.
+// Pixels for many points, each tier of PixelLookup on full groups: tier 1 runs on each group of
+// points handed in (each point tagged), and the points it leaves undecided (the simulator casts one
+// ray in ten on a column's wall) wait for a group of their own for tiers 2 and 3, instead of
+// taking them one by one beside it.
 
 #include "update/pixel_lookup.hpp"
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 
 namespace eco::detail {
 
-/// Calls take(tag, pixel, reach) for every point pushed — its pixel as PixelLookup::pixel_of gives
-/// it (or kOutside) and its range |v| (kReach Range) or the square of it (SquaredRange) — not in
-/// the order pushed; flush() hands back the last ones.
+/// Calls take(tag, pixel, reach) once for every point pushed — its pixel as PixelLookup::pixel_of
+/// gives it (or kOutside) and its range |v| (kReach Range) or the square of it (SquaredRange) —
+/// not in the order pushed; flush() hands back the last ones.
 template <class Take, PixelLookup::Reach kReach = PixelLookup::Reach::Range>
 class PixelStream {
  public:
@@ -23,28 +24,8 @@ class PixelStream {
 
   PixelStream(const PixelLookup& lookup, Take take) : lookup_(lookup), take_(std::move(take)) {}
 
-  /// The sensor-frame point (x, y, z), named `tag` to take().
-  void push(double x, double y, double z, std::uint32_t tag) {
-    const std::size_t i = fresh_.size++;
-    fresh_.x[i] = x, fresh_.y[i] = y, fresh_.z[i] = z;
-    fresh_tags_[i] = tag;
-    if (fresh_.size == kGroup) run_fresh();
-  }
-  /// A group of sensor-frame points at once, lane i named tags[i].
+  /// A group of sensor-frame points, lane i tagged tags[i].
   void push_group(const PixelLookup::Group& points, const std::array<std::uint32_t, kGroup>& tags) {
-    run_first_tier(points, tags);
-  }
-  void flush() {
-    run_fresh();
-    run_left();
-  }
-
- private:
-  void run_fresh() {
-    run_first_tier(fresh_, fresh_tags_);
-    fresh_.size = 0;
-  }
-  void run_first_tier(const PixelLookup::Group& points, const std::array<std::uint32_t, kGroup>& tags) {
     lookup_.first_tier_of(points, pixels_, reaches_, kReach);
     for (std::size_t i = 0; i < points.size; ++i) {
       if (pixels_[i] != PixelLookup::kUndecided) {
@@ -58,6 +39,10 @@ class PixelStream {
       if (left_.size == kGroup) run_left();
     }
   }
+  /// Answers the points still waiting.
+  void flush() { run_left(); }
+
+ private:
   void run_left() {
     std::array<double, kGroup> ranges = left_reaches_;
     if constexpr (kReach == PixelLookup::Reach::SquaredRange) {
@@ -70,9 +55,11 @@ class PixelStream {
 
   const PixelLookup& lookup_;
   Take take_;
-  PixelLookup::Group fresh_, left_;  // points waiting for tier 1, and those it left
-  std::array<std::uint32_t, kGroup> fresh_tags_{}, left_tags_{}, pixels_{}, left_pixels_{};
-  std::array<double, kGroup> reaches_{}, left_reaches_{};
+  std::array<std::uint32_t, kGroup> pixels_{};  // tier 1's answers for the group pushed
+  std::array<double, kGroup> reaches_{};
+  PixelLookup::Group left_;  // the points tier 1 left, waiting for a group of their own
+  std::array<std::uint32_t, kGroup> left_tags_{}, left_pixels_{};
+  std::array<double, kGroup> left_reaches_{};
 };
 
 }  // namespace eco::detail
