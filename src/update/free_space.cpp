@@ -3,9 +3,11 @@
 // projected into it and cleared when the nearest return around its pixel lies beyond it by more
 // than the margin (the rule in include/eco/config.hpp).
 //
-// Two passes: the first reads the tree, streaming the points of every leaf the sensor may see
-// into the pixel lookup (full groups across leaves) and noting the visited nodes; the second
-// rewrites only the leaves that lost points, and the nodes above them.
+// Two passes. The first reads the tree: it notes the nodes the sensor may see (look_into), then
+// streams their leaves' points into the pixel lookup in full groups across leaves, rotated into
+// the sensor's frame in vector code (stream_points), each point's verdict kept by its index. The
+// second rewrites only the leaves that lost points, and the nodes above them (plan_clearing,
+// Clearing).
 
 #include "update/clearing_rule.hpp"
 #include "update/pixel_stream.hpp"
@@ -88,8 +90,9 @@ class SeenThrough {
 };
 
 /// A node the first pass looked into, in the order it did (preorder). A leaf's points (`points`
-/// of them; 0 for an inner node) lie in its block's columns, x from `x`, y and z `stride` floats
-/// further each, and have verdicts [first, first + points).
+/// of them; 0, with stride 0, for an inner node) lie in its block's columns, x from `x`, y and z
+/// `stride` floats further each (while the tree is unchanged: the first pass only), and have
+/// verdicts [first, first + points).
 struct Visit {
   std::uint32_t id;
   std::uint32_t parent;  // its parent's Visit, kNone for the root
