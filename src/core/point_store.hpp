@@ -88,15 +88,6 @@ class PointStore {
             count};
   }
 
-  /// Asks the memory system for the coordinates of the `count` points at `link` ahead of a read.
-  void prefetch(std::uint32_t link, std::uint32_t count) const {
-    const PointSpan s = span(link, count);
-    for (const float* column : {s.x, s.y, s.z}) {
-      for (std::uint32_t i = 0; i < count; i += 16) __builtin_prefetch(column + i);  // 16 floats a cache line
-      __builtin_prefetch(column + count - 1);
-    }
-  }
-
   /// Calls f(const StoredPoint&) for each of the `count` points at `link`.
   template <class F>
   void for_each(std::uint32_t link, std::uint32_t count, F&& f) const {

@@ -30,7 +30,7 @@ RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<dou
     if (pixel != PixelLookup::kOutside) nearest[pixel] = std::min(nearest[pixel], range);
   });
   PixelLookup::Group group;
-  const std::array<std::uint32_t, PixelLookup::kGroup> tags{};  // unused
+  const std::array<std::uint32_t, PixelLookup::kGroup> tags{};  // the returns need none
   for (std::size_t begin = 0; begin < scan.count; begin += PixelLookup::kGroup) {
     group.size = std::min(PixelLookup::kGroup, scan.count - begin);
     for (std::size_t i = 0; i < group.size; ++i) {  // a return with a non-finite coordinate has no pixel
