@@ -76,7 +76,7 @@ template <std::size_t kStride, bool kPrevious>
 
 ECO_WIDE_VECTOR_CLONES
 void admit_group(const AdmissionFrame& frame, ScanView scan, std::size_t begin, std::size_t n, AdmittedGroup& out) {
-  if (frame.has_previous) {
+  if (!frame.previous.empty()) {  // a box of positive side holds floats: only "no previous box" is empty
     switch (scan.stride) {
       case 3: return admit_lanes<3, true>(frame, scan, begin, n, out);
       case 4: return admit_lanes<4, true>(frame, scan, begin, n, out);

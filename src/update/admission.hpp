@@ -28,6 +28,7 @@ inline constexpr std::size_t kAdmitGroup = 64;
 struct FloatBox {
   std::array<float, 3> lo{1, 1, 1}, hi{0, 0, 0};
   static FloatBox of(const Box& b);
+  [[nodiscard]] bool empty() const { return lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2]; }
 };
 
 /// What admit_group needs of a frame, as plain numbers.
@@ -37,7 +38,6 @@ struct AdmissionFrame {
   std::array<double, 3> anchor{};                   // the precision origin
   FloatBox box;                                     // Box(p_t), anchor frame
   FloatBox previous;                                // Box(p_{t-1}) under ShiftInOnly, else empty
-  bool has_previous = false;                        // whether `previous` is one
 };
 
 /// One group's verdicts: the admitted points' stored coordinates and scan indices, in scan
@@ -95,7 +95,6 @@ struct Admission {
     }
     f.box = FloatBox::of(box);
     if (previous) f.previous = FloatBox::of(*previous);
-    f.has_previous = previous.has_value();
     return f;
   }
 };

@@ -26,10 +26,9 @@ constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
 class Sight {
  public:
   Sight(const Motion& motion, const SensorModel& sensor)
-      : sensor_R_world_(motion.pose.linear().transpose()),
-        sensor_from_anchor_(motion.anchor - motion.pose.translation()),
-        pose_(sensor_R_world_, sensor_from_anchor_),
-        up_(sensor_R_world_.row(2).transpose()),
+      : sensor_from_anchor_(motion.anchor - motion.pose.translation()),
+        pose_(motion.pose.linear().transpose(), sensor_from_anchor_),
+        up_(motion.pose.linear().col(2)),  // sensor_R_world's third row
         sin_fov_min_(std::sin(sensor.vertical_fov_min * kRadiansPerDegree)),
         sin_fov_max_(std::sin(sensor.vertical_fov_max * kRadiansPerDegree)),
         max_range_(sensor.max_range) {}
@@ -64,7 +63,6 @@ class Sight {
     return height - spread - slack > sin_fov_max_ * (sin_fov_max_ >= 0.0 ? farthest : std::sqrt(squared_nearest));
   }
 
-  Eigen::Matrix3d sensor_R_world_;
   Eigen::Vector3d sensor_from_anchor_;  // anchor - sensor position: stored point + this = sensor-relative, world axes
   SensorPose pose_;
   Eigen::Vector3d up_;                  // the sensor's z axis, world axes

@@ -39,6 +39,12 @@ void fill_starts(std::span<const double> walls, std::span<double> start, double 
   }
 }
 
+/// The row bins' density, for `bins` equal bins between the first row wall and the field of view's
+/// top (row_walls[rows]): computed alike where the tables are built and where they are found.
+double row_bins_per_unit(std::size_t bins, const double* row_walls, int rows) {
+  return double(bins) / (row_walls[rows] - row_walls[0]);
+}
+
 /// The tables' layout: the sensor model they were built for, then the row walls (rows + 2: the
 /// field of view's top and +infinity close them), the column walls (columns + 2: 4, the seam, and
 /// +infinity), the column bins' starts (4 a column), the row bins' starts (to the end).
@@ -75,7 +81,7 @@ void build_tables(const SensorModel& sensor, int rows, int columns, std::vector<
   const std::span<const double> columns_walls(tables.data() + column_walls, std::size_t(columns) + 2);
   fill_starts(columns_walls, std::span(tables.data() + column_start, column_bins), double(columns));
   const std::span<double> row_starts(tables.data() + row_start, tables.size() - row_start);
-  fill_starts(row_walls, row_starts, double(row_starts.size()) / span);
+  fill_starts(row_walls, row_starts, row_bins_per_unit(row_starts.size(), row_walls.data(), rows));
 }
 
 }  // namespace
@@ -144,7 +150,7 @@ PixelLookup::PixelLookup(const SensorModel& sensor, std::vector<double>& tables)
   const double* row_wall = tables.data() + kHeader;
   const double fov_top = row_wall[rows_];
   const std::size_t row_bins = tables.size() - row_start;
-  second_ = {{row_wall, tables.data() + row_start, row_bins, double(row_bins) / (fov_top - row_wall[0])},
+  second_ = {{row_wall, tables.data() + row_start, row_bins, row_bins_per_unit(row_bins, row_wall, rows_)},
              {row_wall + row_walls, row_wall + row_walls + column_walls, column_bins, double(columns_)},
              row_wall[0],
              fov_top,
