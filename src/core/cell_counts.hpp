@@ -8,8 +8,11 @@
 // (so at most 1023 points per cell) — in an open-addressing table with linear probing and
 // backward-shift deletion (no tombstones).
 
+#include <algorithm>
 #include <array>
 #include <bit>
+#include <cassert>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,6 +20,8 @@ namespace eco::detail {
 
 class CellCounts {
  public:
+  /// Keys add_below_each judges together.
+  static constexpr std::size_t kMaxKeys = 64;
   static constexpr int kAxisBits = 18;
   static constexpr std::uint32_t kMaxCount = (1u << 10) - 1;
 
@@ -35,24 +40,10 @@ class CellCounts {
   }
 
   /// add_below(keys[i], limit) for i in [0, n), in order; passed[i] says whether it counted.
-  /// Room for n new cells is made first, so the loop tests no load per key.
   void add_below_each(const std::uint64_t* keys, std::size_t n, std::uint32_t limit, std::uint8_t* passed) {
-    while (4 * (used_ + n) > 3 * slots_.size()) grow();
-    std::uint64_t* const slots = slots_.data();
-    const std::size_t last = slots_.size() - 1;
-    std::size_t used = used_;
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::uint64_t key = keys[k];
-      const std::size_t i = probe(slots, last, home(key), key);
-      const std::uint32_t count = count_of(slots[i]);
-      const bool counted = count < limit;
-      passed[k] = std::uint8_t(counted);
-      if (counted) {
-        slots[i] = count == 0 ? key << kCountBits | 1u : slots[i] + 1;
-        used += count == 0;
-      }
+    for (std::size_t from = 0; from < n; from += kMaxKeys) {
+      add_below_some(keys + from, std::min(kMaxKeys, n - from), limit, passed + from);
     }
-    used_ = used;
   }
 
   /// Starts loading the slot where `key`'s probe begins (a hint: no effect on the counts).
@@ -95,12 +86,46 @@ class CellCounts {
 
  private:
   static constexpr int kCountBits = 10;
+
+  /// add_below_each for n <= kMaxKeys keys. Room for n new cells is made first, so the loop tests
+  /// no load per key. A cell full when the keys arrive stays full through them (none is emptied
+  /// here): the keys found full at or next to their home are refused in vector code, the others
+  /// probed one by one.
+  void add_below_some(const std::uint64_t* keys, std::size_t n, std::uint32_t limit, std::uint8_t* passed) {
+    assert(n <= kMaxKeys);
+    while (4 * (used_ + n) > 3 * slots_.size()) grow();
+    std::uint64_t* const slots = slots_.data();
+    const std::size_t last = slots_.size() - 1;
+    std::array<std::uint32_t, kMaxKeys> open;
+    const std::size_t left = refuse_full_near_home(slots, last, shift_, keys, n, limit, passed, open.data());
+    std::size_t used = used_;
+    for (std::size_t j = 0; j < left; ++j) {
+      const std::size_t k = open[j];
+      const std::uint64_t key = keys[k];
+      const std::size_t i = probe(slots, last, home(key), key);
+      const std::uint32_t count = count_of(slots[i]);
+      const bool counted = count < limit;
+      passed[k] = std::uint8_t(counted);
+      if (counted) {
+        slots[i] = count == 0 ? key << kCountBits | 1u : slots[i] + 1;
+        used += count == 0;
+      }
+    }
+    used_ = used;
+  }
+  /// Sets passed[k] = 0 for the keys[k] (k < n <= kMaxKeys) whose cell holds `limit` points or
+  /// more in their home slot or the next (of `slots`, size last + 1); lists the other k, in order,
+  /// in open[]. Returns how many it listed. (src/core/cell_counts.cpp: vector code.)
+  static std::size_t refuse_full_near_home(const std::uint64_t* slots, std::size_t last, int shift,
+                                           const std::uint64_t* keys, std::size_t n, std::uint32_t limit,
+                                           std::uint8_t* passed, std::uint32_t* open);
   static constexpr std::uint64_t kCountMask = (std::uint64_t{1} << kCountBits) - 1;
 
   static std::uint64_t key_of(std::uint64_t slot) { return slot >> kCountBits; }
   static std::uint32_t count_of(std::uint64_t slot) { return std::uint32_t(slot & kCountMask); }
-  [[nodiscard]] std::size_t home(std::uint64_t key) const {
-    return std::size_t((key * 0x9E3779B97F4A7C15ull) >> shift_);  // Fibonacci hashing
+  [[nodiscard]] std::size_t home(std::uint64_t key) const { return home(key, shift_); }
+  static std::size_t home(std::uint64_t key, int shift) {
+    return std::size_t((key * 0x9E3779B97F4A7C15ull) >> shift);  // Fibonacci hashing
   }
   [[nodiscard]] std::size_t next(std::size_t i) const { return (i + 1) & (slots_.size() - 1); }
   /// The slot of `key`'s cell, or the empty slot that ends its probe run (the table is not empty).
