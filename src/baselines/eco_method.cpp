@@ -1,24 +1,19 @@
-// `eco` and `eco_exact`: the EgoOctree itself, through its public API.
+// `eco`, `eco_exact` and `eco_clearing`: the EgoOctree itself, through its public API.
 
 #include "baselines/makers.hpp"
 
 #include <eco/ego_octree.hpp>
 
+#include <utility>
+
 namespace eco::baselines {
 namespace {
 
-Config with_recentring(Config config, Recentring recentring) {
-  config.recentring = recentring;
-  return config;
-}
-
 class EcoMethod final : public Method {
  public:
-  EcoMethod(const Config& config, Recentring recentring) : tree_(with_recentring(config, recentring)) {}
+  EcoMethod(std::string name, const Config& config) : name_(std::move(name)), tree_(config) {}
 
-  [[nodiscard]] std::string name() const override {
-    return tree_.config().recentring == Recentring::Quantised ? "eco" : "eco_exact";
-  }
+  [[nodiscard]] std::string name() const override { return name_; }
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
     tree_.update(world_T_sensor, scan);
   }
@@ -45,13 +40,22 @@ class EcoMethod final : public Method {
   [[nodiscard]] const Eigen::Isometry3d& pose() const override { return tree_.pose(); }
 
  private:
+  std::string name_;
   EgoOctree tree_;
 };
 
 }  // namespace
 
 std::unique_ptr<Method> make_eco(const Config& config, Recentring recentring) {
-  return std::make_unique<EcoMethod>(config, recentring);
+  Config c = config;
+  c.recentring = recentring;
+  return std::make_unique<EcoMethod>(recentring == Recentring::Quantised ? "eco" : "eco_exact", c);
+}
+
+std::unique_ptr<Method> make_eco_clearing(const Config& config) {
+  Config c = config;
+  c.clearing.enabled = true;
+  return std::make_unique<EcoMethod>("eco_clearing", c);
 }
 
 }  // namespace eco::baselines

@@ -14,14 +14,16 @@ std::vector<Neighbor> Method::knn(const Eigen::Vector3d& query, std::size_t k) c
 }
 
 const std::vector<std::string>& method_names() {
-  static const std::vector<std::string> names{"eco",       "eco_exact",  "octree_base", "ioctree_global",
-                                              "ioctree_target", "nanoflann", "pcl_octree", "scan_pass", "scan_only"};
+  static const std::vector<std::string> names{"eco",           "eco_exact",      "eco_clearing", "octree_base",
+                                              "ioctree_global", "ioctree_target", "nanoflann",    "pcl_octree",
+                                              "scan_pass",      "scan_only"};
   return names;
 }
 
 std::unique_ptr<Method> make_method(std::string_view name, const Config& config) {
   if (name == "eco") return make_eco(config, Recentring::Quantised);
   if (name == "eco_exact") return make_eco(config, Recentring::Exact);
+  if (name == "eco_clearing") return make_eco_clearing(config);
   if (name == "octree_base") return make_octree_base(config);
   if (name == "ioctree_global") return make_ioctree_global(config);
   if (name == "ioctree_target") return make_ioctree_target(config);

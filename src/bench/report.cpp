@@ -163,6 +163,11 @@ std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>
     << ratio(kd, &MethodSummary::update_ms, eco) << ", eco voxel map / pcl_octree "
     << ratio(eco, &MethodSummary::voxel_ms, pcl) << ", eco KNN / nanoflann " << ratio(eco, &MethodSummary::knn_ms, kd)
     << ", eco update p99 / mean " << (eco ? fixed(eco->update_ms_p99 / eco->update_ms, 2) + "×" : "–") << ".\n";
+  if (const MethodSummary* clearing = find(summaries, "eco_clearing")) {
+    s << "\nFree-space clearing: eco_clearing update / eco " << ratio(clearing, &MethodSummary::update_ms, eco)
+      << ", Chamfer " << fixed(clearing->chamfer_m, 4) << " m against eco's " << (eco ? fixed(eco->chamfer_m, 4) : "–")
+      << " m.\n";
+  }
   return s.str();
 }
 

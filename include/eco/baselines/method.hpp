@@ -7,6 +7,7 @@
 /// |------------------|-------------------------------------------------------------------------|
 /// | `eco`            | EgoOctree, quantised re-centring (ours)                                 |
 /// | `eco_exact`      | EgoOctree, exact re-centring (the paper's algorithm)                    |
+/// | `eco_clearing`   | `eco` with free-space clearing on, whatever the Config says             |
 /// | `octree_base`    | bulk rebuild (top-down partition) from the points in the box, every frame |
 /// | `ioctree_global` | global-rooted incremental octree (i-Octree): grows its root, never deletes |
 /// | `ioctree_target` | the same, bounded: deletes what left the box, inserts what ECO inserts  |
@@ -17,7 +18,8 @@
 ///
 /// All hold points the way ECO does (float offsets from a precision origin) and take in the same
 /// scan points (the Config's insert policy), so their held sets are equal — except
-/// `ioctree_global`, which also keeps everything that left the box. The octree baselines share
+/// `ioctree_global`, which also keeps everything that left the box, and `eco_clearing`, which
+/// drops what the scans show to be free space. The octree baselines share
 /// ECO's node layout and query code, so the benchmark compares update strategies, not two
 /// implementations of KNN. Queries are in the world frame.
 
