@@ -247,6 +247,17 @@ std::string workload_name(const ::testing::TestParamInfo<WorkloadKind>& param) {
 INSTANTIATE_TEST_SUITE_P(Workloads, ShortRun, ::testing::Values(WorkloadKind::Static, WorkloadKind::Dynamic),
                          workload_name);
 
+TEST(Bench, SummaryStatesClearingsFigureWhenEcoClearingRan) {
+  BenchRun run;
+  MethodSummary eco{.name = "eco", .frames = 3, .update_ms = 2.0, .chamfer_m = 0.125};
+  MethodSummary clearing{.name = "eco_clearing", .frames = 3, .update_ms = 3.5, .chamfer_m = 0.0625};
+  EXPECT_EQ(summary_tables(run, {eco}).find("Free-space clearing"), std::string::npos);
+  const std::string md = summary_tables(run, {eco, clearing});
+  EXPECT_NE(md.find("Free-space clearing: eco_clearing update / eco 1.75×, Chamfer 0.0625 m against eco's 0.1250 m."),
+            std::string::npos)
+      << md;
+}
+
 TEST(Bench, BadOptionsAreRejectedByName) {
   BenchOptions o;
   o.methods = {"eco", "octree"};
