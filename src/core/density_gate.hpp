@@ -24,8 +24,9 @@ namespace eco::detail {
 inline constexpr std::size_t kDensityGroup = 64;
 
 /// The keys of the cells of points[0, n) (n <= kDensityGroup) where WorldGrid::index's guess is
-/// sure, in vector code (core/vector_clones.hpp); unsure[i] = 1 where it is not (a point within
-/// 2^-12 of a wall, or far out), whose key is then left to WorldGrid::index.
+/// sure — in single precision where the grid's Single is ready, else in double — in vector code
+/// (core/vector_clones.hpp); unsure[i] = 1 where it is not (a point within 2^-12 of a wall, or
+/// far out), whose key is then left to WorldGrid::index.
 void guess_cell_keys(const WorldGrid& grid, const std::array<float, 3>* points, std::size_t n, std::uint64_t* keys,
                      std::uint8_t* unsure);
 

@@ -50,6 +50,42 @@ class WorldGrid {
       fast_below_[a] = std::abs(origin[a] * inverse_) < kFastCells ? kFastCells : -1.0;  // -1: never
     }
   }
+  /// The same grid, its guesses made in single precision (twice the lanes) for the stored
+  /// coordinates near `centre` when those within `reach` of it (the ego box's centre and half
+  /// side) lie within kSingleReach cells and the centre within kFastCells of the world's origin;
+  /// see Single.
+  WorldGrid(const std::array<double, 3>& origin, double size, const std::array<double, 3>& centre, double reach)
+      : WorldGrid(origin, size) {
+    bool ready = reach * inverse_ < kSingleReach;
+    for (int a = 0; a < 3; ++a) {
+      const float near = float(centre[a]);
+      const double cells = (origin[a] + double(near)) * inverse_;
+      ready = ready && std::abs(cells) < kFastCells;
+      const double below = std::floor(cells) - kSingleReach;  // exact: cells < 2^34
+      single_.axis[a] = {near, float(cells - below), std::int64_t(below)};
+    }
+    single_.inverse = float(inverse_);
+    single_.ready = ready;
+  }
+
+  /// What the single-precision guess (core/density_gate.cpp) computes with. Stored coordinate s
+  /// lies g = offset + (s - near) * inverse cells above cell `base`, everything in float; a g in
+  /// [0, 2 kSingleReach) whose fraction lies more than kSure from both its walls is the answer.
+  /// Why, in cell units (M < 2^34 the centre's cells from the world's origin, |s - near| below
+  /// kSingleReach = 2^8 cells): s - near, the float inverse and their product are each rounded
+  /// once (3 · 2^8 · 2^-24 = 3 · 2^-16), the offset once and the sum once (2^-16 each, g < 2^9),
+  /// the double offset and the walls a few units of M 2^-53 (< 2^-18 each): under 2^-13 < kSure.
+  struct Single {
+    struct Axis {
+      float near, offset;
+      std::int64_t base;
+    };
+    std::array<Axis, 3> axis{};
+    float inverse = 0.0f;
+    bool ready = false;  // else the guesses are made in double
+  };
+  [[nodiscard]] const Single& single() const { return single_; }
+  static constexpr double kSingleReach = 0x1p8;  // cells either side of the centre's guessed in float
 
   /// What index() computes with, per axis, for vector code that makes the same guesses
   /// (core/density_gate.cpp): a guess is sure where its fraction lies in (kSure, 1 - kSure) and
@@ -85,6 +121,7 @@ class WorldGrid {
   std::array<double, 3> base_{};
   std::array<double, 3> fast_below_{};
   double size_, inverse_;
+  Single single_;
 };
 
 /// Whether the grid of side `size` names every coordinate within `reach` metres of the world

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -56,6 +57,18 @@ struct Motion {
 /// origin, a multiple of 1024 m: exact), rounded once more to float.
 inline std::array<float, 3> rebased(const std::array<float, 3>& p, const Eigen::Vector3d& shift) {
   return {float(double(p[0]) + shift[0]), float(double(p[1]) + shift[1]), float(double(p[2]) + shift[2])};
+}
+
+/// The world grid of side `size` seen from `m`'s precision origin, its guesses made in single
+/// precision around the ego box (the points a frame takes in or drops lie in it or next to it).
+inline WorldGrid ego_grid(const Motion& m, double size) {
+  std::array<double, 3> centre{};
+  double reach = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    centre[std::size_t(a)] = (m.box.lo[std::size_t(a)] + m.box.hi[std::size_t(a)]) / 2;
+    reach = std::max(reach, (m.box.hi[std::size_t(a)] - m.box.lo[std::size_t(a)]) / 2);
+  }
+  return WorldGrid({m.anchor[0], m.anchor[1], m.anchor[2]}, size, centre, reach);
 }
 
 /// The precision origin for a sensor at `position`: `anchor` while the sensor is near it, else

@@ -34,7 +34,7 @@ std::size_t Tree::bytes() const {
 void Tree::set_motion(const Motion& m) {
   motion_ = m;
   age_cutoff_ = compute_age_cutoff();
-  density_grid_ = WorldGrid({m.anchor[0], m.anchor[1], m.anchor[2]}, cfg_.density_cap.cell_size);
+  density_grid_ = ego_grid(m, cfg_.density_cap.cell_size);
 }
 
 bool Tree::keeps(const StoredPoint& s, const Box& box, UpdateStats& stats) {

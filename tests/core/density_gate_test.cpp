@@ -79,6 +79,69 @@ TEST(DensityGate, GuessedKeysAreTheGridsKeys) {
   }
 }
 
+TEST(DensityGate, KeysGuessedInSinglePrecisionAreTheGridsKeys) {
+  // Grids seen from an ego box (centre, half side): the float guesses where the box spans at most
+  // 2^8 cells either side and lies within 2^34 cells of the world's origin, the double ones else.
+  struct Case {
+    std::array<double, 3> origin, centre;
+    double size, reach;
+    bool ready;
+  };
+  const std::vector<Case> cases{
+      {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 0.1, 10.0, true},
+      {{-10.3, 5.1, 0.7}, {2047.5, -1999.25, 3.0}, 0.3, 10.0, true},         // the box far from the origin
+      {{4.0e6, -3.5e6, 1.0e5}, {-300.1, 12.7, -0.4}, 0.07, 10.0, true},      // 1e8 cells out
+      {{1.5e9, -1.6e9, 1.7e9}, {1000.0, -1000.0, 3.0}, 0.15, 10.0, true},    // near 2^34 cells
+      {{1.8e9, 0.0, 0.0}, {0.0, 0.0, 0.0}, 0.1, 10.0, false},                // beyond 2^34: none sure
+      {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 0.02, 10.0, false},                 // 500 cells either side
+      {{123.456, -0.001, 7.0}, {5.0, 5.0, 5.0}, 0.123, 31.0, true}};         // 1 / size not a float
+  std::mt19937 rng(29);
+  for (const Case& c : cases) {
+    SCOPED_TRACE("size " + std::to_string(c.size) + ", origin " + std::to_string(c.origin[0]));
+    const WorldGrid grid(c.origin, c.size, c.centre, c.reach);
+    ASSERT_EQ(grid.single().ready, c.ready);
+    // inside the box and up to twice as far (the points a frame drops lie next to it)
+    // points on walls (or a float below one) and off them, inside the box and up to twice as far
+    // (the points a frame drops lie next to it) or far beyond, where a float's rounding is
+    // coarser than kSure; then random points inside the box alone
+    std::uniform_real_distribution<double> near(-2 * c.reach, 2 * c.reach), far(-200 * c.reach, 200 * c.reach),
+        in(-c.reach, c.reach);
+    std::uniform_int_distribution<int> choice(0, 2);
+    std::array<std::uint64_t, kDensityGroup> keys{};
+    std::array<std::uint8_t, kDensityGroup> unsure{};
+    std::array<std::array<float, 3>, kDensityGroup> points{};
+    std::size_t sure_random = 0, random = 0;
+    for (int group = 0; group < 1000; ++group) {
+      const bool on_walls = group % 2 == 0;
+      for (std::array<float, 3>& p : points) {
+        for (std::size_t a = 0; a < 3; ++a) {
+          const double d = !on_walls ? in(rng) : group % 4 == 0 ? near(rng) : far(rng);
+          const float f = float(c.centre[a] + d);
+          p[a] = on_walls ? near_wall(grid, int(a), c.size, f, choice(rng)) : f;
+        }
+      }
+      guess_cell_keys(grid, points.data(), points.size(), keys.data(), unsure.data());
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const std::array<float, 3>& p = points[i];
+        if (unsure[i] == 0) {
+          ASSERT_EQ(keys[i], CellCounts::key(grid.index(p))) << p[0] << " " << p[1] << " " << p[2];
+        }
+        if (!on_walls) {
+          ++random;
+          sure_random += unsure[i] == 0;
+        }
+      }
+    }
+    // a random coordinate lies within 2^-12 of a wall once in 2^11: nearly every such point is sure,
+    // unless the grid lies too far out for any guess
+    if (c.origin[0] < 0x1p34 * c.size) {
+      EXPECT_GT(sure_random, random * 99 / 100);
+    } else {
+      EXPECT_EQ(sure_random, 0u);
+    }
+  }
+}
+
 TEST(DensityGate, JudgesGroupsAsTheRuleJudgesOnePointAfterAnother) {
   const WorldGrid grid({12.5, -3.25, 0.75}, 0.2);
   std::mt19937 rng(11);
