@@ -52,15 +52,15 @@ class WorldGrid {
   }
   /// The same grid, its guesses made in single precision (twice the lanes) for the stored
   /// coordinates near `centre` when those within `reach` of it (the ego box's centre and half
-  /// side) lie within kSingleReach cells and the centre within kFastCells of the world's origin;
-  /// see Single.
+  /// side) lie within kSingleReach cells and the origin and the centre within kFastCells of the
+  /// world's origin; see Single.
   WorldGrid(const std::array<double, 3>& origin, double size, const std::array<double, 3>& centre, double reach)
       : WorldGrid(origin, size) {
     bool ready = reach * inverse_ < kSingleReach;
     for (int a = 0; a < 3; ++a) {
       const float near = float(centre[a]);
       const double cells = (origin[a] + double(near)) * inverse_;
-      ready = ready && std::abs(cells) < kFastCells;
+      ready = ready && std::abs(cells) < kFastCells && fast_below_[a] > 0.0;  // both within 2^34 cells
       const double below = std::floor(cells) - kSingleReach;  // exact: cells < 2^34
       single_.axis[a] = {near, float(cells - below), std::int64_t(below)};
     }
@@ -71,10 +71,11 @@ class WorldGrid {
   /// What the single-precision guess (core/density_gate.cpp) computes with. Stored coordinate s
   /// lies g = offset + (s - near) * inverse cells above cell `base`, everything in float; a g in
   /// [0, 2 kSingleReach) whose fraction lies more than kSure from both its walls is the answer.
-  /// Why, in cell units (M < 2^34 the centre's cells from the world's origin, |s - near| below
-  /// kSingleReach = 2^8 cells): s - near, the float inverse and their product are each rounded
-  /// once (3 · 2^8 · 2^-24 = 3 · 2^-16), the offset once and the sum once (2^-16 each, g < 2^9),
-  /// the double offset and the walls a few units of M 2^-53 (< 2^-18 each): under 2^-13 < kSure.
+  /// Why, in cell units (M < 2^34 the origin's and the centre's cells from the world's origin,
+  /// |s - near| below kSingleReach = 2^8 cells): s - near, the float inverse and their product are
+  /// each rounded once (3 · 2^8 · 2^-24 = 3 · 2^-16), the offset to float once and the sum once
+  /// (2^-16 each, g < 2^9), the offset in double and the walls by 3 M 2^-53 < 2^-17 each: in all
+  /// under 46 · 2^-19 < 2^-13, half of kSure.
   struct Single {
     struct Axis {
       float near, offset;

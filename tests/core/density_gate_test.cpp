@@ -93,6 +93,7 @@ TEST(DensityGate, KeysGuessedInSinglePrecisionAreTheGridsKeys) {
       {{4.0e6, -3.5e6, 1.0e5}, {-300.1, 12.7, -0.4}, 0.07, 10.0, true},      // 1e8 cells out
       {{1.5e9, -1.6e9, 1.7e9}, {1000.0, -1000.0, 3.0}, 0.15, 10.0, true},    // near 2^34 cells
       {{1.8e9, 0.0, 0.0}, {0.0, 0.0, 0.0}, 0.1, 10.0, false},                // beyond 2^34: none sure
+      {{2.0e9, 0.0, 0.0}, {-2.0e9, 0.0, 0.0}, 0.1, 10.0, false},             // the box near, the origin not
       {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 0.02, 10.0, false},                 // 500 cells either side
       {{123.456, -0.001, 7.0}, {5.0, 5.0, 5.0}, 0.123, 31.0, true}};         // 1 / size not a float
   std::mt19937 rng(29);
