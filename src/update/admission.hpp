@@ -5,7 +5,6 @@
 
 #include "core/geometry.hpp"
 #include "core/motion.hpp"
-#include "update/scan_ahead.hpp"
 
 #include <eco/config.hpp>
 #include <eco/types.hpp>
@@ -72,7 +71,6 @@ struct Admission {
     const AdmissionFrame f = frame();
     AdmittedGroup group;
     for (std::size_t begin = 0; begin < scan.count; begin += kAdmitGroup) {
-      prefetch_scan(scan, begin + kScanAhead, kAdmitGroup);
       admit_group(f, scan, begin, std::min(kAdmitGroup, scan.count - begin), group);
       stats.skipped_nonfinite += group.nonfinite;
       stats.skipped_by_policy += group.refused;

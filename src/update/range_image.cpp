@@ -1,7 +1,6 @@
 #include "update/range_image.hpp"
 
 #include "update/pixel_stream.hpp"
-#include "update/scan_ahead.hpp"
 
 #include <algorithm>
 #include <array>
@@ -33,7 +32,6 @@ RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<dou
   PixelLookup::Group group;
   const std::array<std::uint32_t, PixelLookup::kGroup> tags{};  // the returns need none
   for (std::size_t begin = 0; begin < scan.count; begin += PixelLookup::kGroup) {
-    prefetch_scan(scan, begin + kScanAhead, PixelLookup::kGroup);
     group.size = std::min(PixelLookup::kGroup, scan.count - begin);
     for (std::size_t i = 0; i < group.size; ++i) {  // a return with a non-finite coordinate has no pixel
       const float* p = scan.data + (begin + i) * scan.stride;
