@@ -6,14 +6,29 @@ namespace eco::detail {
 
 namespace {
 
-constexpr std::uint32_t kMask = (1u << CellCounts::kAxisBits) - 1;
+/// One axis of a guess: the low kAxisBits of the cell index whose count above the base is
+/// `above`, truncated (the floor: counted only in [0, span), where it is positive and an int32
+/// holds it), added to the base's low bits; `sure` cleared unless `above` lies in that range and
+/// more than kSure inside its cell. Shared by the float and the double guess.
+template <class Real>
+[[gnu::always_inline]] inline std::uint64_t axis_bits(Real above, Real span, std::uint32_t base_low,
+                                                      std::uint32_t& sure) {
+  constexpr std::uint32_t kMask = (1u << CellCounts::kAxisBits) - 1;
+  constexpr Real kSure = Real(WorldGrid::kSure);
+  const std::uint32_t held = (above >= Real(0)) & (above < span);
+  const Real counted = held != 0 ? above : Real(0);
+  const std::int32_t whole = std::int32_t(counted);
+  const Real fraction = counted - Real(whole);
+  sure &= held & (fraction > kSure) & (fraction < Real(1) - kSure);
+  return (std::uint32_t(whole) + base_low) & kMask;
+}
 
 /// The guesses in single precision, for a grid whose Single is ready (WorldGrid says why they hold).
 ECO_WIDE_VECTOR_CLONES
 void guess_in_float(const WorldGrid::Single& single, const std::array<float, 3>* points, std::size_t n,
                     std::uint64_t* keys, std::uint8_t* unsure) {
   const std::array<WorldGrid::Single::Axis, 3> axes = single.axis;
-  const float inverse = single.inverse, span = float(2 * WorldGrid::kSingleReach), sure_above = float(WorldGrid::kSure);
+  const float inverse = single.inverse, span = float(2 * WorldGrid::kSingleReach);
   std::array<std::uint32_t, 3> base_low{};  // the bases' low bits: a key keeps kAxisBits of each index
   for (int a = 0; a < 3; ++a) base_low[std::size_t(a)] = std::uint32_t(axes[std::size_t(a)].base);
   for (std::size_t i = 0; i < n; ++i) {
@@ -21,20 +36,15 @@ void guess_in_float(const WorldGrid::Single& single, const std::array<float, 3>*
     std::uint32_t sure = 1;
     for (int a = 0; a < 3; ++a) {
       const float above = axes[a].offset + (points[i][a] - axes[a].near) * inverse;
-      const std::uint32_t held = (above >= 0.0f) & (above < span);
-      const float counted = held != 0 ? above : 0.0f;
-      const std::int32_t whole = std::int32_t(counted);  // a truncation of a positive number: its floor
-      const float fraction = counted - float(whole);
-      sure &= held & (fraction > sure_above) & (fraction < 1.0f - sure_above);
-      const std::uint32_t low = std::uint32_t(whole) + base_low[std::size_t(a)];
-      key |= std::uint64_t(low & kMask) << (a * CellCounts::kAxisBits);
+      key |= axis_bits(above, span, base_low[std::size_t(a)], sure) << (a * CellCounts::kAxisBits);
     }
     keys[i] = key;
     unsure[i] = std::uint8_t(1 - sure);
   }
 }
 
-/// WorldGrid::index's guesses, in double.
+/// WorldGrid::index's guesses, in double: the count of cells above the base (within kReach of
+/// the origin's cell it lies in (0, 2^31)).
 ECO_WIDE_VECTOR_CLONES
 void guess_in_double(const WorldGrid& grid, const std::array<float, 3>* points, std::size_t n, std::uint64_t* keys,
                      std::uint8_t* unsure) {
@@ -46,19 +56,9 @@ void guess_in_double(const WorldGrid& grid, const std::array<float, 3>* points, 
     std::uint64_t key = 0;
     std::uint32_t sure = 1;
     for (int a = 0; a < 3; ++a) {
-      // WorldGrid::index's guess: the count of cells above the base truncated (within kReach of
-      // the origin's cell it lies in (0, 2^31), where an int32 holds it), its low bits added to
-      // the base's
       const double cells = (axes[a].origin + double(points[i][a])) * inverse;
-      const double above = cells - axes[a].base;
-      const std::uint32_t held = (above >= 0.0) & (above < 0x1p31);
-      const double counted = held != 0 ? above : 0.0;
-      const std::int32_t whole = std::int32_t(counted);
-      const double fraction = counted - double(whole);
-      sure &= held & (fraction > WorldGrid::kSure) & (fraction < 1.0 - WorldGrid::kSure) &
-              (std::abs(cells) < axes[a].fast_below);
-      const std::uint32_t low = std::uint32_t(whole) + base_low[std::size_t(a)];
-      key |= std::uint64_t(low & kMask) << (a * CellCounts::kAxisBits);
+      sure &= std::uint32_t(std::abs(cells) < axes[a].fast_below);
+      key |= axis_bits(cells - axes[a].base, 0x1p31, base_low[std::size_t(a)], sure) << (a * CellCounts::kAxisBits);
     }
     keys[i] = key;
     unsure[i] = std::uint8_t(1 - sure);
