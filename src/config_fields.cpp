@@ -23,7 +23,7 @@ constexpr std::array<std::string_view, 2> kSwitch{"false", "true"};  // a Switch
   [](const Config& c) { return double(c.member); },                      \
   [](Config& c, double v) { c.member = type(v); }
 
-const std::array<ConfigField, 21> kFields{{
+const std::array<ConfigField, 22> kFields{{
     {"box_side", ConfigField::Kind::Real, "m", "L: side of the ego cube held around the sensor; typical 10-100",
      0.0, 1e5, true, {}, ECO_FIELD_ACCESS(box_side, double)},
     {"leaf_capacity", ConfigField::Kind::Count, "points", "N_max: a leaf with more points splits; typical 8-64",
@@ -69,6 +69,10 @@ const std::array<ConfigField, 21> kFields{{
     {"clearing.margin", ConfigField::Kind::Real, "m",
      "clearing: the nearest return around a held point must lie this much farther than it", 0.01, 1e5, false, {},
      ECO_FIELD_ACCESS(clearing.margin, double)},
+    {"clearing.arrivals", ConfigField::Kind::Switch, "",
+     "clearing: a point that arrived where the scan before saw empty space (something moved in) is held "
+     "until the next update only",
+     0.0, 1.0, false, kSwitch, ECO_FIELD_ACCESS(clearing.arrivals, bool)},
     {"sensor.vertical_fov_min", ConfigField::Kind::Real, "deg", "elevation of the sensor's lowest beam", -90.0,
      90.0, false, {}, ECO_FIELD_ACCESS(sensor.vertical_fov_min, double)},
     {"sensor.vertical_fov_max", ConfigField::Kind::Real, "deg",

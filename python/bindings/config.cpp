@@ -51,6 +51,7 @@ std::vector<Field<FreeSpaceClearing>> Record<FreeSpaceClearing>::fields() {
   return {
       field("enabled", &FreeSpaceClearing::enabled, doc_of("clearing.enabled")),
       field("margin", &FreeSpaceClearing::margin, doc_of("clearing.margin")),
+      field("arrivals", &FreeSpaceClearing::arrivals, doc_of("clearing.arrivals")),
   };
 }
 

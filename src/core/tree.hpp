@@ -15,6 +15,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <optional>
@@ -22,6 +23,10 @@
 #include <vector>
 
 namespace eco::detail {
+
+/// Whether free-space clearing judges the points an update brought in once more at the next
+/// (FreeSpaceClearing::arrivals): it needs each point's frame stamp.
+inline bool judges_arrivals(const Config& c) { return c.clearing.enabled && c.clearing.arrivals; }
 
 /// Nodes at one depth, indexed by their cell: where insertion starts instead of the root
 /// (the paper's movement-aware start depth; in Quantised mode depth k, a direct lattice lookup).
@@ -142,8 +147,15 @@ class Tree {
   }
   /// What free-space clearing keeps between frames (src/update/free_space.cpp), so that no frame
   /// pays for fresh pages or computes the sensor's tables again; counted in bytes().
+  /// A range image kept from an earlier update, with that update's frame and pose.
+  struct EarlierImage {
+    std::vector<double> storage;
+    std::uint32_t frame = 0;  // 0: none yet
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  };
   struct ClearingMemory {
-    std::vector<double> image;         // the range image (src/update/range_image.hpp)
+    std::vector<double> image;         // this update's range image (src/update/range_image.hpp)
+    std::array<EarlierImage, 2> earlier;  // the last update's and the one's before (clearing.arrivals)
     std::vector<double> pixel_tables;  // the pixel lookup's walls and bins (src/update/pixel_lookup.hpp)
   };
   ClearingMemory& clearing_memory() { return clearing_memory_; }

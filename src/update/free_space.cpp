@@ -3,6 +3,9 @@
 // projected into it and cleared when the nearest return around its pixel lies beyond it by more
 // than the margin (the rule in include/eco/config.hpp).
 //
+// With clearing.arrivals, the points the last update brought in are judged once more, against the
+// scan before theirs from where it was taken: the tree keeps the last two updates' images.
+//
 // Two passes. The first reads the tree: it notes the nodes the sensor may see (look_into), then
 // streams their leaves' points into the pixel lookup in full groups across leaves, rotated into
 // the sensor's frame in vector code (stream_points), each point's verdict kept by its index. The
@@ -15,6 +18,9 @@
 #include "update/sensor_frame.hpp"
 #include "update/stages.hpp"
 #include "update/subtree_filter.hpp"
+
+#include <optional>
+#include <utility>
 
 namespace eco::detail {
 namespace {
@@ -99,36 +105,60 @@ struct Visit {
   std::uint32_t seen;    // points seen through in the subtree (filled after the pass)
   std::uint32_t stride;
   const float* x;
+  const std::uint32_t* stamps;  // null unless kept
 };
 using Verdicts = std::vector<char>;
 
-/// Pass 1, the nodes: appends to `visits` the nodes under `id` whose bounds the sensor may see;
+/// A scan that judges held points: where it was taken from, and its image.
+struct Judge {
+  const Sight& sight;
+  SeenThrough seen_through;
+  /// Whether it sees through stored point `s`.
+  [[nodiscard]] bool sees_through(const PixelLookup& pixels, const StoredPoint& s) const {
+    const Eigen::Vector3d v = sight.pose().apply(s.p);
+    double range = 0.0;
+    return seen_through(pixels.pixel_of(v, range), v.squaredNorm());
+  }
+};
+
+/// This update's scan, and (clearing.arrivals) the scan before the one that brought the points
+/// stamped `arrived`.
+struct Judges {
+  Judge now;
+  std::optional<Judge> before;
+  std::uint32_t arrived = 0;
+  [[nodiscard]] bool may_see(const Aabb& box) const {
+    return now.sight.may_see(box) || (before && before->sight.may_see(box));
+  }
+};
+
+/// Pass 1, the nodes: appends to `visits` the nodes under `id` whose bounds a judge may see;
 /// returns the points their leaves hold, numbered from `first`.
-std::uint32_t look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, const Sight& sight,
+std::uint32_t look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, const Judges& judges,
                         std::vector<Visit>& visits, std::uint32_t first) {
   const Node& n = t.nodes()[id];
-  if (n.count == 0 || !sight.may_see(n.bounds)) return 0;
+  if (n.count == 0 || !judges.may_see(n.bounds)) return 0;
   if (n.leaf) {
     const PointSpan points = t.points().span(n.link, n.count);
-    visits.push_back({id, parent, n.count, first, 0, std::uint32_t(points.y - points.x), points.x});
+    visits.push_back({id, parent, n.count, first, 0, std::uint32_t(points.y - points.x), points.x, points.stamps});
     return n.count;
   }
   const std::uint32_t here = std::uint32_t(visits.size());
-  visits.push_back({id, parent, 0, first, 0, 0, nullptr});
+  visits.push_back({id, parent, 0, first, 0, 0, nullptr, nullptr});
   t.nodes().prefetch_children(id);  // their misses overlap
   std::uint32_t points = 0;
   for (int o = 0; o < 8; ++o) {
     const std::uint32_t child = t.nodes().child(id, o);
-    if (child != kNone) points += look_into(t, child, here, sight, visits, first + points);
+    if (child != kNone) points += look_into(t, child, here, judges, visits, first + points);
   }
   return points;
 }
 
-/// Pass 1, the points: streams every visited leaf's points into `stream`, in the sensor's frame,
-/// tagged with their verdicts' index, a group at a time across leaves; the leaves' columns are
-/// asked for a few leaves ahead.
-template <class Stream>
-void stream_points(const std::vector<Visit>& visits, const SensorPose& pose, Stream& stream) {
+/// Pass 1, the points: streams the visited leaves' points that `picked(leaf, i)` into `stream`, in
+/// the sensor's frame, tagged with their verdicts' index, a group at a time across leaves; the
+/// leaves' columns are asked for a few leaves ahead.
+template <class Stream, class Pick>
+void stream_points(const std::vector<Visit>& visits, const SensorPose& pose, Stream& stream, const Pick& picked) {
   constexpr std::size_t kAhead = 8;
   StoredGroup stored;
   PixelLookup::Group group;
@@ -151,6 +181,7 @@ void stream_points(const std::vector<Visit>& visits, const SensorPose& pose, Str
     const float* y = x + leaf.stride;
     const float* z = y + leaf.stride;
     for (std::uint32_t i = 0; i < leaf.points; ++i) {
+      if (!picked(leaf, i)) continue;
       const std::size_t k = stored.size++;
       stored.x[k] = x[i], stored.y[k] = y[i], stored.z[k] = z[i];
       tags[k] = leaf.first + i;
@@ -199,21 +230,14 @@ class Clearing {
   const Verdicts& verdicts_;
 };
 
-}  // namespace
-
-void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint>& displaced,
-                      UpdateStats& stats) {
-  if (!tree.config().clearing.enabled) return;
-  Tree::ClearingMemory& memory = tree.clearing_memory();
-  const PixelLookup pixels(tree.config().sensor, memory.pixel_tables);
-  const RangeImage image(pixels, scan, memory.image);
-  const Sight sight(motion, tree.config().sensor);
-  const SeenThrough seen_through(image, tree.config().clearing.margin);
+/// Clears from `tree` and `displaced` what the judges see through.
+void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judges& judges,
+                        std::vector<StoredPoint>& displaced, UpdateStats& stats) {
+  const auto is_arrival = [&](std::uint32_t stamp) { return judges.before && stamp == judges.arrived; };
   std::erase_if(displaced, [&](const StoredPoint& s) {
-    const Eigen::Vector3d v = sight.pose().apply(s.p);
-    double range = 0.0;
-    const std::uint32_t pixel = pixels.pixel_of(v, range);
-    if (!seen_through(pixel, v.squaredNorm())) return false;
+    if (!judges.now.sees_through(pixels, s) && !(is_arrival(s.stamp) && judges.before->sees_through(pixels, s))) {
+      return false;
+    }
     ++stats.cleared;
     tree.forget(s);
     return true;
@@ -222,15 +246,25 @@ void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vect
   std::vector<Visit> visits;
   Verdicts verdicts;
   std::size_t seen = 0;
-  const auto judge = [&](std::uint32_t tag, std::uint32_t pixel, double squared_range) {
-    const bool through = seen_through(pixel, squared_range);
-    verdicts[tag] = through ? 1 : 0;
-    seen += through ? 1 : 0;
+  const auto judged_by = [&](const SeenThrough& seen_through) {
+    return [&](std::uint32_t tag, std::uint32_t pixel, double squared_range) {
+      if (verdicts[tag] != 0 || !seen_through(pixel, squared_range)) return;
+      verdicts[tag] = 1;
+      ++seen;
+    };
   };
-  PixelStream<decltype(judge), PixelLookup::Reach::SquaredRange> stream(pixels, judge);
-  verdicts.resize(look_into(tree, tree.root(), kNone, sight, visits, 0));
-  stream_points(visits, sight.pose(), stream);
-  stream.flush();
+  verdicts.resize(look_into(tree, tree.root(), kNone, judges, visits, 0));
+  const auto by_now = judged_by(judges.now.seen_through);
+  PixelStream<decltype(by_now), PixelLookup::Reach::SquaredRange> now(pixels, by_now);
+  stream_points(visits, judges.now.sight.pose(), now, [](const Visit&, std::uint32_t) { return true; });
+  now.flush();
+  if (judges.before) {
+    const auto by_before = judged_by(judges.before->seen_through);
+    PixelStream<decltype(by_before), PixelLookup::Reach::SquaredRange> before(pixels, by_before);
+    stream_points(visits, judges.before->sight.pose(), before,
+                  [&](const Visit& leaf, std::uint32_t i) { return is_arrival(leaf.stamps[i]); });
+    before.flush();
+  }
   stats.cleared += seen;
   if (seen == 0) return;
   const std::vector<std::uint32_t> plan = plan_clearing(tree, visits, verdicts);
@@ -238,6 +272,41 @@ void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vect
   if (filter_subtree(tree, tree.root(), clearing) == Filtered::Gone) {
     tree.place_root(tree.root_cell(), tree.lattice());
   }
+}
+
+/// Keeps this update's image (in `memory.image`) as the last one, the last as the one before.
+void keep_image(Tree::ClearingMemory& memory, const Motion& motion) {
+  std::swap(memory.earlier[0], memory.earlier[1]);
+  std::swap(memory.earlier[0].storage, memory.image);  // the oldest's storage is reused
+  memory.earlier[0].frame = motion.frame;
+  memory.earlier[0].pose = motion.pose;
+}
+
+}  // namespace
+
+void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint>& displaced,
+                      UpdateStats& stats) {
+  const Config& config = tree.config();
+  if (!config.clearing.enabled) return;
+  Tree::ClearingMemory& memory = tree.clearing_memory();
+  const PixelLookup pixels(config.sensor, memory.pixel_tables);
+  const RangeImage image(pixels, scan, memory.image);
+  const Sight sight(motion, config.sensor);
+  Judges judges{{sight, SeenThrough(image, config.clearing.margin)}, std::nullopt, motion.frame - 1};
+  // the points the last update brought in were stamped frame - 1; the scan before theirs, frame - 2
+  const Tree::EarlierImage& before = memory.earlier[1];
+  const bool arrivals = judges_arrivals(config);
+  std::optional<RangeImage> before_image;
+  std::optional<Sight> before_sight;
+  if (arrivals && motion.frame > 2 && before.frame == motion.frame - 2) {
+    Motion then = motion;
+    then.pose = before.pose;
+    before_sight.emplace(then, config.sensor);
+    before_image.emplace(pixels, before.storage);
+    judges.before.emplace(Judge{*before_sight, SeenThrough(*before_image, config.clearing.margin)});
+  }
+  clear_seen_through(tree, pixels, judges, displaced, stats);
+  if (arrivals) keep_image(memory, motion);
 }
 
 }  // namespace eco::detail

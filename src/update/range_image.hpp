@@ -24,6 +24,9 @@ class RangeImage {
   /// `storage` (resized to an image and three rows; the caller keeps it between frames, so that
   /// no frame pays for fresh pages, and while this image is read).
   RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<double>& storage);
+  /// The image an earlier RangeImage binned into `storage`, for the same `pixels`.
+  RangeImage(const PixelLookup& pixels, const std::vector<double>& storage)
+      : around_(storage.data(), std::size_t(pixels.rows()) * std::size_t(pixels.columns())) {}
 
   /// The nearest return around `pixel` (not kOutside) [m]; kNoReturn when none came back there.
   [[nodiscard]] double nearest_around(std::uint32_t pixel) const { return around_[pixel]; }

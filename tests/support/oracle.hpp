@@ -90,7 +90,7 @@ class Oracle {
       if (double(time) < time_cutoff) continue;  // older than the limit already
       if (cfg_.density_cap.enabled() && density_count(f) >= cfg_.density_cap.max_points) continue;
       held_.push_back({f, age > 0 ? frame_ : 0, cfg_.attributes.ids ? attributes.ids[i] : 0u,
-                       cfg_.attributes.intensity ? attributes.intensities[i] : 0.0f, time});
+                       cfg_.attributes.intensity ? attributes.intensities[i] : 0.0f, time, frame_});
     }
   }
 
@@ -187,40 +187,57 @@ class Oracle {
     std::uint32_t id;
     float intensity;
     float time;  // seconds from time_origin_
+    std::uint32_t arrived;  // the update that brought it (clearing.arrivals)
   };
 
-  /// Free-space clearing as include/eco/config.hpp words it, ray by ray: a held point goes when
-  /// it is in the sensor's image, some return came back in its pixel or the 8 around it, and
-  /// every one of those lies more than the margin beyond it.
-  void clear_free_space(const Eigen::Isometry3d& pose, const std::vector<Eigen::Vector3f>& scan) {
-    struct Ray {
-      int row, column;
-      double range;
-    };
+  /// A scan as clearing reads it: its returns' pixels and ranges, and the pose it was taken at.
+  struct Ray {
+    int row, column;
+    double range;
+  };
+  struct SeenScan {
     std::vector<Ray> rays;
-    for (std::size_t i = 0; i < scan.size(); ++i) {
-      const Eigen::Vector3f& s = scan[i];
+    Eigen::Isometry3d pose;
+    std::uint32_t frame;
+  };
+  [[nodiscard]] SeenScan seen_scan(const Eigen::Isometry3d& pose, const std::vector<Eigen::Vector3f>& scan) const {
+    SeenScan seen{{}, pose, frame_};
+    for (const Eigen::Vector3f& s : scan) {
       if (!s.allFinite()) continue;
       double range = 0.0;
       int row = 0, column = 0;
-      if (pixel(s.cast<double>(), row, column, range)) rays.push_back({row, column, range});
+      if (pixel(s.cast<double>(), row, column, range)) seen.rays.push_back({row, column, range});
     }
-    const Eigen::Matrix3d sensor_R_world = pose.linear().transpose();
-    const Eigen::Vector3d from_origin = origin_ - pose.translation();
+    return seen;
+  }
+  /// Whether `scan` sees through held point `h`: it is in the sensor's image, some return came
+  /// back in its pixel or the 8 around it, and every one of those lies more than the margin beyond it.
+  [[nodiscard]] bool sees_through(const SeenScan& scan, const Held& h) const {
+    const Eigen::Vector3d v = scan.pose.linear().transpose() *
+                              (origin_ - scan.pose.translation() + Eigen::Vector3d(double(h.p[0]), double(h.p[1]), double(h.p[2])));
+    double range = 0.0;
+    int row = 0, column = 0;
+    if (!pixel(v, row, column, range)) return false;
     const int columns = int(std::ceil(360.0 / cfg_.sensor.horizontal_resolution));
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Ray& r : scan.rays) {
+      const int apart = std::abs(r.column - column);
+      if (std::abs(r.row - row) <= 1 && std::min(apart, columns - apart) <= 1) nearest = std::min(nearest, r.range);
+    }
+    return std::isfinite(nearest) && nearest > range + cfg_.clearing.margin;
+  }
+  /// Free-space clearing as include/eco/config.hpp words it, ray by ray: a held point goes when
+  /// this scan sees through it or, with arrivals, when it came in the last update and the scan
+  /// before that one saw through it.
+  void clear_free_space(const Eigen::Isometry3d& pose, const std::vector<Eigen::Vector3f>& scan) {
+    SeenScan now = seen_scan(pose, scan);
+    const bool arrivals = cfg_.clearing.arrivals && scans_.size() == 2 && scans_.front().frame + 2 == frame_;
     std::erase_if(held_, [&](const Held& h) {
-      const Eigen::Vector3d v =
-          sensor_R_world * (from_origin + Eigen::Vector3d(double(h.p[0]), double(h.p[1]), double(h.p[2])));
-      double range = 0.0;
-      int row = 0, column = 0;
-      if (!pixel(v, row, column, range)) return false;
-      double nearest = std::numeric_limits<double>::infinity();
-      for (const Ray& r : rays) {
-        const int apart = std::abs(r.column - column);
-        if (std::abs(r.row - row) <= 1 && std::min(apart, columns - apart) <= 1) nearest = std::min(nearest, r.range);
-      }
-      return std::isfinite(nearest) && nearest > range + cfg_.clearing.margin;
+      return sees_through(now, h) || (arrivals && h.arrived + 1 == frame_ && sees_through(scans_.front(), h));
     });
+    if (!cfg_.clearing.arrivals) return;
+    scans_.push_back(std::move(now));
+    if (scans_.size() > 2) scans_.erase(scans_.begin());
   }
   /// The range image pixel of sensor-frame point v (SensorModel's formulas); false outside it.
   [[nodiscard]] bool pixel(const Eigen::Vector3d& v, int& row, int& column, double& range) const {
@@ -285,6 +302,7 @@ class Oracle {
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
   std::uint32_t frame_ = 0;
+  std::vector<SeenScan> scans_;  // the last two updates' (clearing.arrivals), oldest first
   double latest_ = -std::numeric_limits<double>::infinity();  // the latest time taken in
   double time_origin_ = 0.0;
 };
