@@ -71,7 +71,7 @@ struct SensorModel {
 /// outside the field of view, beyond max_range, or where no return came back are kept. The test
 /// uses the update's pose and every finite return of the scan (in the box or not) and runs after
 /// the box moved (stage 2), before the scan's points are inserted.
-/// With `arrivals` (on by default), a point the previous update brought in is judged a second
+/// With `arrivals` (off by default), a point the previous update brought in is judged a second
 /// time, by the same rule, against the scan before the one that brought it (from that scan's
 /// pose), and cleared when that scan saw through where it lies: it filled space seen empty a frame
 /// earlier — something moved in — so it is held until the next update only, and a car coming
@@ -81,7 +81,7 @@ struct SensorModel {
 struct FreeSpaceClearing {
   bool enabled = false;   ///< off by default: the paper's behaviour, every trail kept
   double margin = 0.3;    ///< [m] a return must lie this much beyond a point to clear it; >= 0.01.
-  bool arrivals = true;   ///< also clear arrivals into space the scan before saw empty (above)
+  bool arrivals = false;  ///< also clear arrivals into space the scan before saw empty (above)
 };
 
 /// Which per-point attributes of the scans (ScanView::ids, intensities, times) the tree stores and

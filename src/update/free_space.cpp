@@ -20,6 +20,7 @@
 #include "update/subtree_filter.hpp"
 
 #include <optional>
+#include <type_traits>
 #include <utility>
 
 namespace eco::detail {
@@ -154,20 +155,50 @@ std::uint32_t look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, c
   return points;
 }
 
-/// Pass 1, the points: streams the visited leaves' points that `picked(leaf, i)` into `stream`, in
-/// the sensor's frame, tagged with their verdicts' index, a group at a time across leaves; the
-/// leaves' columns are asked for a few leaves ahead.
-template <class Stream, class Pick>
-void stream_points(const std::vector<Visit>& visits, const SensorPose& pose, Stream& stream, const Pick& picked) {
+/// Pass 1, a judge's end of it: its pose and pixel stream, and the group of stored points being
+/// filled for them.
+template <class Stream>
+class Sink {
+ public:
+  Sink(const SensorPose& pose, Stream& stream) : pose_(pose), stream_(stream) {}
+  void add(float x, float y, float z, std::uint32_t tag) {
+    const std::size_t k = stored_.size++;
+    stored_.x[k] = x, stored_.y[k] = y, stored_.z[k] = z;
+    tags_[k] = tag;
+    if (stored_.size == PixelLookup::kGroup) send();
+  }
+  /// Sends what is left, then the stream's own leftovers.
+  void flush() {
+    send();
+    stream_.flush();
+  }
+
+ private:
+  void send() {
+    to_sensor_frame(pose_, stored_, group_);
+    stream_.push_group(group_, tags_);
+    stored_.size = 0;
+  }
+  const SensorPose& pose_;
+  Stream& stream_;
+  StoredGroup stored_;
+  PixelLookup::Group group_;
+  std::array<std::uint32_t, PixelLookup::kGroup> tags_{};
+};
+
+/// A sink that takes nothing (no arrivals to judge).
+struct NoSink {
+  void add(float, float, float, std::uint32_t) {}
+  void flush() {}
+};
+
+/// Pass 1, the points: streams every visited leaf's points into `now`, and those stamped
+/// `arrived` into `arrivals` too, tagged with their verdicts' index, a group at a time across
+/// leaves; the leaves' columns are asked for a few leaves ahead.
+template <class Now, class Arrivals>
+void stream_points(const std::vector<Visit>& visits, Now& now, Arrivals& arrivals, std::uint32_t arrived) {
   constexpr std::size_t kAhead = 8;
-  StoredGroup stored;
-  PixelLookup::Group group;
-  std::array<std::uint32_t, PixelLookup::kGroup> tags{};
-  const auto send = [&] {
-    to_sensor_frame(pose, stored, group);
-    stream.push_group(group, tags);
-    stored.size = 0;
-  };
+  constexpr bool kArrivals = !std::is_same_v<Arrivals, NoSink>;
   for (std::size_t v = 0; v < visits.size(); ++v) {
     if (v + kAhead < visits.size()) {
       const Visit& ahead = visits[v + kAhead];
@@ -180,15 +211,18 @@ void stream_points(const std::vector<Visit>& visits, const SensorPose& pose, Str
     const float* x = leaf.x;
     const float* y = x + leaf.stride;
     const float* z = y + leaf.stride;
-    for (std::uint32_t i = 0; i < leaf.points; ++i) {
-      if (!picked(leaf, i)) continue;
-      const std::size_t k = stored.size++;
-      stored.x[k] = x[i], stored.y[k] = y[i], stored.z[k] = z[i];
-      tags[k] = leaf.first + i;
-      if (stored.size == PixelLookup::kGroup) send();
+    for (std::uint32_t i = 0; i < leaf.points; ++i) now.add(x[i], y[i], z[i], leaf.first + i);
+    if constexpr (kArrivals) {
+      bool any = false;  // a leaf without arrivals (most) is passed over in vector code
+      for (std::uint32_t i = 0; i < leaf.points; ++i) any |= leaf.stamps[i] == arrived;
+      if (!any) continue;
+      for (std::uint32_t i = 0; i < leaf.points; ++i) {
+        if (leaf.stamps[i] == arrived) arrivals.add(x[i], y[i], z[i], leaf.first + i);
+      }
     }
   }
-  send();
+  now.flush();
+  arrivals.flush();
 }
 
 /// Pass 2's plan from pass 1's visits and verdicts: per node id, 0 where nothing below was seen
@@ -255,15 +289,16 @@ void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judges& jud
   };
   verdicts.resize(look_into(tree, tree.root(), kNone, judges, visits, 0));
   const auto by_now = judged_by(judges.now.seen_through);
-  PixelStream<decltype(by_now), PixelLookup::Reach::SquaredRange> now(pixels, by_now);
-  stream_points(visits, judges.now.sight.pose(), now, [](const Visit&, std::uint32_t) { return true; });
-  now.flush();
+  PixelStream<decltype(by_now), PixelLookup::Reach::SquaredRange> now_stream(pixels, by_now);
+  Sink now(judges.now.sight.pose(), now_stream);
   if (judges.before) {
     const auto by_before = judged_by(judges.before->seen_through);
-    PixelStream<decltype(by_before), PixelLookup::Reach::SquaredRange> before(pixels, by_before);
-    stream_points(visits, judges.before->sight.pose(), before,
-                  [&](const Visit& leaf, std::uint32_t i) { return is_arrival(leaf.stamps[i]); });
-    before.flush();
+    PixelStream<decltype(by_before), PixelLookup::Reach::SquaredRange> before_stream(pixels, by_before);
+    Sink arrivals(judges.before->sight.pose(), before_stream);
+    stream_points(visits, now, arrivals, judges.arrived);
+  } else {
+    NoSink none;
+    stream_points(visits, now, none, 0);
   }
   stats.cleared += seen;
   if (seen == 0) return;

@@ -109,7 +109,11 @@ TEST_P(BaselineClearing, FreeSpaceClearingAsTheContractSays) {
   cfg.clearing.margin = 0.1;
   cfg.sensor = {-60.0, 60.0, 4.0, 4.0, 30.0};  // coarse pixels over the streams' scattered scans
   if (name == "scan_only") cfg.clearing.enabled = false;
-  stream_and_compare(name, cfg, Stream(motion, Cloud::Surfaces, cfg.box_side, 7u), 12);
+  for (const bool arrivals : {false, true}) {
+    SCOPED_TRACE(arrivals ? "clearing.arrivals on" : "clearing.arrivals off");
+    cfg.clearing.arrivals = arrivals;
+    stream_and_compare(name, cfg, Stream(motion, Cloud::Surfaces, cfg.box_side, 7u), 12);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -35,22 +35,27 @@ SensorModel model_of(const sim::LidarModel& lidar) {
   return m;
 }
 
-using Params = std::tuple<Recentring, bool>;
+using Params = std::tuple<Recentring, bool, bool>;  // re-centring, capped, arrivals
 
 class ClearingOracle : public ::testing::TestWithParam<Params> {};
 
 TEST_P(ClearingOracle, HeldSetMatchesTheRuleRayByRayEveryFrame) {
-  const auto [recentring, capped] = GetParam();
+  const auto [recentring, capped, arrivals] = GetParam();
   const sim::Simulator drive(small_drive(30, 4));
   Config cfg;
   cfg.recentring = recentring;
   cfg.box_side = 40.0;
   cfg.clearing.enabled = true;
   cfg.clearing.margin = 0.3;
+  cfg.clearing.arrivals = arrivals;
   cfg.sensor = model_of(drive.config().lidar);
   if (capped) cfg.density_cap = {0.5, 2};
   EgoOctree tree(cfg);
   Oracle oracle(cfg);
+  Config rays_only = cfg;
+  rays_only.clearing.arrivals = false;
+  EgoOctree without_arrivals(rays_only);
+  std::size_t cleared_without = 0;
   std::mt19937 rng(3);
   std::size_t cleared = 0;
   const double x10 = drive.pose(10).translation().x();
@@ -63,19 +68,24 @@ TEST_P(ClearingOracle, HeldSetMatchesTheRuleRayByRayEveryFrame) {
     const UpdateStats& u = tree.update(frame.world_T_lidar, frame.cloud.points);
     oracle.update(frame.world_T_lidar, frame.cloud.points, tree.precision_origin());
     cleared += u.cleared;
+    cleared_without += without_arrivals.update(frame.world_T_lidar, frame.cloud.points).cleared;
     rebased = rebased || (u.rebased && t > 10);
     expect_same_answers(tree, oracle, rng, "frame " + std::to_string(t));
     if (HasFatalFailure()) return;
   }
   EXPECT_GT(cleared, 100u) << "clearing never bit";
+  if (arrivals) {
+    EXPECT_GT(cleared, cleared_without + 100) << "no arrival was cleared";
+  }
   EXPECT_TRUE(rebased) << "the precision origin never moved under held points";
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, ClearingOracle,
                          ::testing::Combine(::testing::Values(Recentring::Quantised, Recentring::Exact),
-                                            ::testing::Bool()),
+                                            ::testing::Bool(), ::testing::Bool()),
                          [](const ::testing::TestParamInfo<Params>& p) {
-                           return name(std::get<0>(p.param)) + (std::get<1>(p.param) ? "_Capped" : "");
+                           return name(std::get<0>(p.param)) + (std::get<1>(p.param) ? "_Capped" : "") +
+                                  (std::get<2>(p.param) ? "_Arrivals" : "");
                          });
 
 TEST(Clearing, OffChangesNothing) {
@@ -101,7 +111,7 @@ TEST(Clearing, OffChangesNothing) {
 
 /// A flat world seen by a sensor 1.73 m above the ground at the origin: the ground (z = 0), a wall
 /// (x = 15 m, |y| <= 6 m, up to 4 m high) and a car 2 m deep and 4 m long, 0.3 m to 1.5 m above
-/// the ground, whose centre crosses from y = -10 m to y = +10 m at x = 8.5 m.
+/// the ground, centred at (car_x, car_y).
 struct Scene {
   static constexpr double kHeight = 1.73;
   static constexpr double kWallX = 15.0;
@@ -109,7 +119,7 @@ struct Scene {
   SensorModel sensor;
 
   /// One return per pixel centre within 45 degrees of +x (sensor frame = world axes, shifted up).
-  [[nodiscard]] std::vector<Eigen::Vector3f> scan(double car_y, bool with_car) const {
+  [[nodiscard]] std::vector<Eigen::Vector3f> scan(double car_y, bool with_car, double car_x = 8.5) const {
     std::vector<Eigen::Vector3f> out;
     const int rows = sensor.rows();
     const int columns = sensor.columns();
@@ -125,7 +135,7 @@ struct Scene {
         const double to_wall = kWallX / d.x();    // the wall
         const Eigen::Vector3d w = to_wall * d;
         if (std::abs(w.y()) <= 6.0 && w.z() + kHeight <= 4.0 && w.z() + kHeight >= 0.0) best = std::min(best, to_wall);
-        if (with_car) best = std::min(best, hit_car(d, car_y));
+        if (with_car) best = std::min(best, hit_car(d, car_x, car_y));
         if (best < 50.0) out.push_back((best * d).cast<float>());
       }
     }
@@ -133,8 +143,8 @@ struct Scene {
   }
 
   /// The distance along unit direction d to the car's box (slab test), infinity on a miss.
-  static double hit_car(const Eigen::Vector3d& d, double car_y) {
-    const Eigen::Vector3d lo(7.5, car_y - 2.0, 0.3 - kHeight), hi(9.5, car_y + 2.0, 1.5 - kHeight);
+  static double hit_car(const Eigen::Vector3d& d, double car_x, double car_y) {
+    const Eigen::Vector3d lo(car_x - 1.0, car_y - 2.0, 0.3 - kHeight), hi(car_x + 1.0, car_y + 2.0, 1.5 - kHeight);
     double near = 0.0, far = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
       if (d[a] == 0.0) {
@@ -189,6 +199,52 @@ TEST(Clearing, ACarCrossingInFrontOfAWallLeavesNoTrailAndTheWallStays) {
   std::size_t wall = 0;
   for (const Eigen::Vector3d& p : kept) wall += std::abs(p.x() - Scene::kWallX) < 1e-3 ? 1 : 0;
   EXPECT_GT(wall, 1000u);
+}
+
+TEST(Clearing, ACarComingTowardTheSensorLeavesNoTrailBehindItWithArrivals) {
+  Scene scene;
+  scene.sensor.vertical_resolution = 1.0;
+  scene.sensor.horizontal_resolution = 0.5;
+  Config cfg;
+  cfg.box_side = 40.0;
+  cfg.sensor = scene.sensor;
+  cfg.clearing.enabled = true;
+  cfg.clearing.arrivals = true;
+  Config rays_only = cfg;
+  rays_only.clearing.arrivals = false;
+  EgoOctree arrivals(cfg), hidden(rays_only);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation().z() = Scene::kHeight;
+  const auto on_car_path = [](const Eigen::Vector3d& p) {
+    return p.x() > 2.9 && p.x() < 13.1 && std::abs(p.y()) < 2.1 && p.z() > 0.25;
+  };
+  for (int t = 0; t <= 8; ++t) {  // the car comes from x = 12 m to x = 4 m, a metre a frame
+    const double car_x = 12.0 - t;
+    const std::vector<Eigen::Vector3f> scan = scene.scan(0.0, /*with_car=*/true, car_x);
+    arrivals.update(pose, scan);
+    hidden.update(pose, scan);
+    // the car's earlier fronts behind it (below its roof, where its own front hides them), but the
+    // first scan's (x = 11 m): no update judged that one's arrivals, there was no scan before it
+    const auto trail = [&](const EgoOctree& tree) {
+      std::size_t n = 0;
+      for (const Eigen::Vector3d& p : tree.points()) {
+        n += on_car_path(p) && p.z() < 1.3 && p.x() > car_x + 1.01 && p.x() < 10.99 ? 1 : 0;
+      }
+      return n;
+    };
+    EXPECT_EQ(trail(arrivals), 0u) << "frame " << t;
+    if (t == 8) {
+      EXPECT_GT(trail(hidden), 100u) << "the car hid no trail of its own";
+    }
+  }
+  const auto static_points = [&](const EgoOctree& tree) {
+    std::vector<Eigen::Vector3d> out;
+    for (const Eigen::Vector3d& p : tree.points()) {
+      if (!on_car_path(p)) out.push_back(p);
+    }
+    return sorted(out);
+  };
+  EXPECT_EQ(static_points(arrivals), static_points(hidden));  // the wall and the ground stay
 }
 
 TEST(Clearing, PointsBehindSurfacesOutsideTheViewOrBeyondRangeStay) {
