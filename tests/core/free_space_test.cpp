@@ -160,19 +160,29 @@ struct Scene {
   }
 };
 
-TEST(Clearing, ACarCrossingInFrontOfAWallLeavesNoTrailAndTheWallStays) {
+/// The scene in coarse pixels, a config that clears free space for its sensor in a 40 m box, and
+/// where the sensor stands.
+struct Staged {
   Scene scene;
-  scene.sensor.vertical_resolution = 1.0;
-  scene.sensor.horizontal_resolution = 0.5;
   Config cfg;
-  cfg.box_side = 40.0;
-  cfg.sensor = scene.sensor;
-  cfg.clearing.enabled = true;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+Staged staged() {
+  Staged s;
+  s.scene.sensor.vertical_resolution = 1.0;
+  s.scene.sensor.horizontal_resolution = 0.5;
+  s.cfg.box_side = 40.0;
+  s.cfg.sensor = s.scene.sensor;
+  s.cfg.clearing.enabled = true;
+  s.pose.translation().z() = Scene::kHeight;
+  return s;
+}
+
+TEST(Clearing, ACarCrossingInFrontOfAWallLeavesNoTrailAndTheWallStays) {
+  const auto [scene, cfg, pose] = staged();
   Config keeping = cfg;
   keeping.clearing.enabled = false;
   EgoOctree clearing(cfg), trails(keeping);
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation().z() = Scene::kHeight;
   for (int t = 0; t <= 20; ++t) {
     const std::vector<Eigen::Vector3f> scan = scene.scan(-10.0 + t, /*with_car=*/true);
     clearing.update(pose, scan);
@@ -202,19 +212,11 @@ TEST(Clearing, ACarCrossingInFrontOfAWallLeavesNoTrailAndTheWallStays) {
 }
 
 TEST(Clearing, ACarComingTowardTheSensorLeavesNoTrailBehindItWithArrivals) {
-  Scene scene;
-  scene.sensor.vertical_resolution = 1.0;
-  scene.sensor.horizontal_resolution = 0.5;
-  Config cfg;
-  cfg.box_side = 40.0;
-  cfg.sensor = scene.sensor;
-  cfg.clearing.enabled = true;
+  auto [scene, cfg, pose] = staged();
   cfg.clearing.arrivals = true;
   Config rays_only = cfg;
   rays_only.clearing.arrivals = false;
   EgoOctree arrivals(cfg), hidden(rays_only);
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation().z() = Scene::kHeight;
   const auto on_car_path = [](const Eigen::Vector3d& p) {
     return p.x() > 2.9 && p.x() < 13.1 && std::abs(p.y()) < 2.1 && p.z() > 0.25;
   };
