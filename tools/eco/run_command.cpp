@@ -127,7 +127,7 @@ int run(const RunOptions& o) {
   const std::size_t total = o.frames > 0 ? std::min(o.frames, scans->size()) : scans->size();
   std::printf("%s, %zu frames, L = %.1f m, N_max = %u, %s re-centring, free-space clearing %s\n",
               o.data.empty() ? "simulated drive" : o.data.c_str(), total, config.box_side, config.leaf_capacity,
-              config.recentring == Recentring::Exact ? "exact" : "quantised", config.clearing.enabled ? "on" : "off");
+              config.recentring == Recentring::Exact ? "exact" : "quantised", !config.clearing.enabled ? "off" : config.clearing.arrivals ? "on, with arrivals" : "on");
   std::printf("%6s %8s %8s %8s %8s %9s %8s %6s %6s %9s %7s\n", "frame", "scan", "inserted", "pruned", "cleared",
               "held", "nodes", "depth", "B/pt", "update ms", "trail");
   std::unique_ptr<TrailReport> trails;
