@@ -65,10 +65,12 @@ struct SensorModel {
 
 /// Free-space clearing: each update removes the held points that the new scan shows to be empty
 /// space, so moving objects leave no trails. A held point is cleared when it lies in the sensor's
-/// image (SensorModel) and the nearest return among its pixel and the 8 around it (columns wrap
-/// around, rows stop at the image's edge) is farther than the point by more than `margin`: some
-/// ray passed through it, and none of its neighbours stopped before it. Points behind surfaces,
-/// outside the field of view, beyond max_range, or where no return came back are kept. The test
+/// image (SensorModel), some return came back in each row of its pixel and the 8 around it
+/// (columns wrap around, rows stop at the image's edge), and the nearest of those returns is
+/// farther than the point by more than `margin`: rays above, through and below it passed it, and
+/// none of its neighbours stopped before it. Points behind surfaces, outside the field of view,
+/// beyond max_range, or where a row around them got no return (a gap between beams, the sky) are
+/// kept. The test
 /// uses the update's pose and every finite return of the scan (in the box or not) and runs after
 /// the box moved (stage 2), before the scan's points are inserted.
 /// With `arrivals` (off by default), a point the previous update brought in is judged a second

@@ -42,7 +42,8 @@ RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<dou
   stream.flush();
   // The minimum over 3x3 neighbourhoods, separably and in place: three rows' minima along them
   // are kept (the row's, the one above's, the one below's), each computed before its row is
-  // overwritten by the minimum across them.
+  // overwritten by the minimum across them. A neighbourhood with a row that got no return is no
+  // evidence (kNoReturn): a gap between beams is not a ray that passed.
   const auto row = [&](std::size_t r) { return nearest.subspan(r * columns, columns); };
   std::span<double> above(storage.data() + size, columns), here(above.data() + columns, columns),
       below(here.data() + columns, columns);
@@ -51,10 +52,10 @@ RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<dou
     if (r + 1 < rows) minimum_along(row(r + 1), below);
     const std::span<double> out = row(r);
     for (std::size_t c = 0; c < columns; ++c) {
-      double m = here[c];
-      if (r > 0) m = std::min(m, above[c]);
-      if (r + 1 < rows) m = std::min(m, below[c]);
-      out[c] = m;
+      double m = here[c], farthest = here[c];  // the rows' nearest returns, and the largest of them
+      if (r > 0) m = std::min(m, above[c]), farthest = std::max(farthest, above[c]);
+      if (r + 1 < rows) m = std::min(m, below[c]), farthest = std::max(farthest, below[c]);
+      out[c] = farthest == kNoReturn ? kNoReturn : m;
     }
     std::swap(above, here);  // the rows move up: here becomes above, below becomes here
     std::swap(here, below);

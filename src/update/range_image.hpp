@@ -14,8 +14,8 @@
 namespace eco::detail {
 
 /// For every pixel, the nearest return of a scan among that pixel and its 8 neighbours (columns
-/// wrap around the circle, rows stop at the image's edge); infinity where none came back. Pixels
-/// are named by PixelLookup's indices.
+/// wrap around the circle, rows stop at the image's edge); infinity where some row of those (one
+/// in the image) got none. Pixels are named by PixelLookup's indices.
 class RangeImage {
  public:
   static constexpr double kNoReturn = std::numeric_limits<double>::infinity();
@@ -28,7 +28,7 @@ class RangeImage {
   RangeImage(const PixelLookup& pixels, const std::vector<double>& storage)
       : around_(storage.data(), std::size_t(pixels.rows()) * std::size_t(pixels.columns())) {}
 
-  /// The nearest return around `pixel` (not kOutside) [m]; kNoReturn when none came back there.
+  /// The nearest return around `pixel` (not kOutside) [m]; kNoReturn when a row around it got none.
   [[nodiscard]] double nearest_around(std::uint32_t pixel) const { return around_[pixel]; }
 
  private:

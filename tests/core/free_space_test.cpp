@@ -92,6 +92,7 @@ TEST(Clearing, OffChangesNothing) {
   const sim::Simulator drive(small_drive(12, 6));
   Config on;
   on.clearing.enabled = true;
+  on.sensor = model_of(drive.config().lidar);
   Config off = on;
   off.clearing.enabled = false;
   EgoOctree with(on), without(off), plain{Config{}};
@@ -110,11 +111,12 @@ TEST(Clearing, OffChangesNothing) {
 // --- the scripted scene ------------------------------------------------------------------------
 
 /// A flat world seen by a sensor 1.73 m above the ground at the origin: the ground (z = 0), a wall
-/// (x = 15 m, |y| <= 6 m, up to 4 m high) and a car 2 m deep and 4 m long, 0.3 m to 1.5 m above
+/// (x = 15 m, |y| <= 20 m, up to 4 m high) and a car 2 m deep and 4 m long, 0.3 m to 1.5 m above
 /// the ground, centred at (car_x, car_y).
 struct Scene {
   static constexpr double kHeight = 1.73;
   static constexpr double kWallX = 15.0;
+  static constexpr double kWallHalfWidth = 20.0;  // past the scan's 45 degrees: every ray above the ground returns
 
   SensorModel sensor;
 
@@ -134,7 +136,7 @@ struct Scene {
         if (d.z() < 0) best = kHeight / -d.z();  // the ground
         const double to_wall = kWallX / d.x();    // the wall
         const Eigen::Vector3d w = to_wall * d;
-        if (std::abs(w.y()) <= 6.0 && w.z() + kHeight <= 4.0 && w.z() + kHeight >= 0.0) best = std::min(best, to_wall);
+        if (std::abs(w.y()) <= kWallHalfWidth && w.z() + kHeight <= 4.0 && w.z() + kHeight >= 0.0) best = std::min(best, to_wall);
         if (with_car) best = std::min(best, hit_car(d, car_x, car_y));
         if (best < 50.0) out.push_back((best * d).cast<float>());
       }
@@ -266,11 +268,21 @@ TEST(Clearing, PointsBehindSurfacesOutsideTheViewOrBeyondRangeStay) {
       {5.0f, 0.0f, 3.0f},    // above the field of view (31 degrees)
       {0.0f, 5.0f, 0.0f}};   // a column where nothing comes back
   tree.update(Eigen::Isometry3d::Identity(), first);
-  const std::vector<Eigen::Vector3f> second{{10.0f, 0.0f, 0.0f}};
+  // a lone return 10 m ahead: the rows above and below got none, so it is no evidence
+  EgoOctree lone(cfg);
+  lone.update(Eigen::Isometry3d::Identity(), first);
+  EXPECT_EQ(lone.update(Eigen::Isometry3d::Identity(), std::vector<Eigen::Vector3f>{{10.0f, 0.0f, 0.0f}}).cleared, 0u);
+  // returns 10 m ahead in the rows below, at and above the horizon (elevations -0.5, 0.5, 1.5 degrees)
+  std::vector<Eigen::Vector3f> second;
+  for (const double elevation : {-0.5, 0.5, 1.5}) {
+    const double e = elevation * 3.14159265358979323846 / 180.0;
+    second.push_back(Eigen::Vector3f(float(10.0 * std::cos(e)), 0.0f, float(10.0 * std::sin(e))));
+  }
   const UpdateStats& u = tree.update(Eigen::Isometry3d::Identity(), second);
   EXPECT_EQ(u.cleared, 1u);
-  std::vector<Eigen::Vector3d> expected{{25, 0, 0}, {12, 0.1, 0}, {5, 0, 3}, {0, 5, 0}, {10, 0, 0}};
+  std::vector<Eigen::Vector3d> expected{{25, 0, 0}, {12, 0.1, 0}, {5, 0, 3}, {0, 5, 0}};
   for (Eigen::Vector3d& p : expected) p = p.cast<float>().cast<double>();
+  for (const Eigen::Vector3f& p : second) expected.push_back(p.cast<double>());
   EXPECT_EQ(sorted(tree.points()), sorted(expected));
   EXPECT_EQ(tree.check_invariants(), "");
   // a return just within the margin clears nothing

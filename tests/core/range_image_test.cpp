@@ -14,7 +14,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 /// nearest_around against the rule written out: the minimum range of the returns binned (by
-/// exact_pixel_of) into the pixel and its 8 neighbours, columns wrapping around, rows not.
+/// exact_pixel_of) into the pixel and its 8 neighbours, columns wrapping around, rows not — or no
+/// return when one of those rows got none.
 TEST(RangeImage, NearestAroundIsTheMinimumOverThe3x3Neighbourhood) {
   SensorModel sensor;
   sensor.horizontal_resolution = 2.0;  // a small image, densely filled, some pixels empty
@@ -40,15 +41,23 @@ TEST(RangeImage, NearestAroundIsTheMinimumOverThe3x3Neighbourhood) {
     const std::uint32_t pixel = pixels.exact_pixel_of(Eigen::Vector3d(scan[i], scan[i + 1], scan[i + 2]), r);
     if (pixel != PixelLookup::kOutside) nearest[pixel] = std::min(nearest[pixel], r);
   }
-  std::size_t empty = 0;
+  std::size_t empty = 0, gaps = 0;
   for (int row = 0; row < rows; ++row) {
     for (int column = 0; column < columns; ++column) {
       double expected = RangeImage::kNoReturn;
+      bool row_without = false;
       for (int dr = -1; dr <= 1; ++dr) {
+        if (row + dr < 0 || row + dr >= rows) continue;
+        double in_row = RangeImage::kNoReturn;
         for (int dc = -1; dc <= 1; ++dc) {
-          if (row + dr < 0 || row + dr >= rows) continue;
-          expected = std::min(expected, nearest[std::size_t((row + dr) * columns + (column + dc + columns) % columns)]);
+          in_row = std::min(in_row, nearest[std::size_t((row + dr) * columns + (column + dc + columns) % columns)]);
         }
+        expected = std::min(expected, in_row);
+        row_without = row_without || in_row == RangeImage::kNoReturn;
+      }
+      if (row_without && expected != RangeImage::kNoReturn) {
+        expected = RangeImage::kNoReturn;
+        gaps += 1;
       }
       ASSERT_EQ(image.nearest_around(std::uint32_t(row * columns + column)), expected) << row << ", " << column;
       empty += expected == RangeImage::kNoReturn ? 1 : 0;
@@ -56,6 +65,7 @@ TEST(RangeImage, NearestAroundIsTheMinimumOverThe3x3Neighbourhood) {
   }
   EXPECT_GT(empty, 0u);  // the edge rows above and below the returns' elevations
   EXPECT_LT(empty, std::size_t(rows * columns) / 2);
+  EXPECT_GT(gaps, 0u);  // some neighbourhood had a return but a row without one
 }
 
 }  // namespace

@@ -211,7 +211,8 @@ class Oracle {
     return seen;
   }
   /// Whether `scan` sees through held point `h`: it is in the sensor's image, some return came
-  /// back in its pixel or the 8 around it, and every one of those lies more than the margin beyond it.
+  /// back in each row (in the image) of its pixel and the 8 around it, and every one of those lies
+  /// more than the margin beyond it.
   [[nodiscard]] bool sees_through(const SeenScan& scan, const Held& h) const {
     const Eigen::Vector3d v = scan.pose.linear().transpose() *
                               (origin_ - scan.pose.translation() + Eigen::Vector3d(double(h.p[0]), double(h.p[1]), double(h.p[2])));
@@ -219,12 +220,18 @@ class Oracle {
     int row = 0, column = 0;
     if (!pixel(v, row, column, range)) return false;
     const int columns = int(std::ceil(360.0 / cfg_.sensor.horizontal_resolution));
+    const int rows = cfg_.sensor.rows();
     double nearest = std::numeric_limits<double>::infinity();
+    std::array<bool, 3> row_returned{row == 0, false, row + 1 == rows};  // rows past the edge need none
     for (const Ray& r : scan.rays) {
       const int apart = std::abs(r.column - column);
-      if (std::abs(r.row - row) <= 1 && std::min(apart, columns - apart) <= 1) nearest = std::min(nearest, r.range);
+      if (std::abs(r.row - row) <= 1 && std::min(apart, columns - apart) <= 1) {
+        nearest = std::min(nearest, r.range);
+        row_returned[std::size_t(r.row - row + 1)] = true;
+      }
     }
-    return std::isfinite(nearest) && nearest > range + cfg_.clearing.margin;
+    const bool every_row = row_returned[0] && row_returned[1] && row_returned[2];
+    return every_row && nearest > range + cfg_.clearing.margin;
   }
   /// Free-space clearing as include/eco/config.hpp words it, ray by ray: a held point goes when
   /// this scan sees through it or, with arrivals, when it came in the last update and the scan
