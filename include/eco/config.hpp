@@ -70,9 +70,8 @@ struct SensorModel {
 /// farther than the point by more than `margin`: rays above, through and below it passed it, and
 /// none of its neighbours stopped before it. Points behind surfaces, outside the field of view,
 /// beyond max_range, or where a row around them got no return (a gap between beams, the sky) are
-/// kept. The test
-/// uses the update's pose and every finite return of the scan (in the box or not) and runs after
-/// the box moved (stage 2), before the scan's points are inserted.
+/// kept. The test uses the update's pose and every finite return of the scan (in the box or not)
+/// and runs after the box moved (stage 2), before the scan's points are inserted.
 /// With `arrivals` (off by default), a point the previous update brought in is judged a second
 /// time, by the same rule, against the scan before the one that brought it (from that scan's
 /// pose), and cleared when that scan saw through where it lies: it filled space seen empty a frame

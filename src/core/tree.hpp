@@ -145,18 +145,18 @@ class Tree {
   std::size_t judge_density(const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed) {
     return judge_group(density_, density_grid_, cfg_.density_cap, points, n, passed);
   }
-  /// What free-space clearing keeps between frames (src/update/free_space.cpp), so that no frame
-  /// pays for fresh pages or computes the sensor's tables again; counted in bytes().
   /// A range image kept from an earlier update, with that update's frame and pose.
   struct EarlierImage {
     std::vector<double> storage;
     std::uint32_t frame = 0;  // 0: none yet
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   };
+  /// What free-space clearing keeps between frames (src/update/free_space.cpp), so that no frame
+  /// pays for fresh pages or computes the sensor's tables again; counted in bytes().
   struct ClearingMemory {
-    std::vector<double> image;         // this update's range image (src/update/range_image.hpp)
+    std::vector<double> image;            // this update's range image (src/update/range_image.hpp)
     std::array<EarlierImage, 2> earlier;  // the last update's and the one's before (clearing.arrivals)
-    std::vector<double> pixel_tables;  // the pixel lookup's walls and bins (src/update/pixel_lookup.hpp)
+    std::vector<double> pixel_tables;     // the pixel lookup's walls and bins (src/update/pixel_lookup.hpp)
   };
   ClearingMemory& clearing_memory() { return clearing_memory_; }
   /// Fills the start table (where insertion starts) from the current tree at `depth`.

@@ -136,7 +136,8 @@ struct Scene {
         if (d.z() < 0) best = kHeight / -d.z();  // the ground
         const double to_wall = kWallX / d.x();    // the wall
         const Eigen::Vector3d w = to_wall * d;
-        if (std::abs(w.y()) <= kWallHalfWidth && w.z() + kHeight <= 4.0 && w.z() + kHeight >= 0.0) best = std::min(best, to_wall);
+        const bool on_wall = std::abs(w.y()) <= kWallHalfWidth && w.z() + kHeight <= 4.0 && w.z() + kHeight >= 0.0;
+        if (on_wall) best = std::min(best, to_wall);
         if (with_car) best = std::min(best, hit_car(d, car_x, car_y));
         if (best < 50.0) out.push_back((best * d).cast<float>());
       }

@@ -214,8 +214,8 @@ class Oracle {
   /// back in each row (in the image) of its pixel and the 8 around it, and every one of those lies
   /// more than the margin beyond it.
   [[nodiscard]] bool sees_through(const SeenScan& scan, const Held& h) const {
-    const Eigen::Vector3d v = scan.pose.linear().transpose() *
-                              (origin_ - scan.pose.translation() + Eigen::Vector3d(double(h.p[0]), double(h.p[1]), double(h.p[2])));
+    const Eigen::Vector3d stored(double(h.p[0]), double(h.p[1]), double(h.p[2]));
+    const Eigen::Vector3d v = scan.pose.linear().transpose() * (origin_ - scan.pose.translation() + stored);
     double range = 0.0;
     int row = 0, column = 0;
     if (!pixel(v, row, column, range)) return false;
