@@ -80,7 +80,7 @@ class Sight {
 /// The scan's verdict on held points: seen through or not.
 class SeenThrough {
  public:
-  SeenThrough(const RangeImage& image, double margin) : image_(image), margin_(margin) {}
+  SeenThrough(RangeImage image, double margin) : image_(image), margin_(margin) {}
   /// For a held point at `pixel` (or kOutside), |v|^2 = `squared_range` from the sensor: a pixel
   /// with no return around it (kNoReturn) is not evidence of free space.
   [[nodiscard]] bool operator()(std::uint32_t pixel, double squared_range) const {
@@ -90,7 +90,7 @@ class SeenThrough {
   }
 
  private:
-  const RangeImage& image_;
+  RangeImage image_;  // a view of storage the tree keeps
   double margin_ = 0.0;
 };
 
@@ -112,7 +112,7 @@ using Verdicts = std::vector<char>;
 
 /// A scan that judges held points: where it was taken from, and its image.
 struct Judge {
-  const Sight& sight;
+  Sight sight;
   SeenThrough seen_through;
   /// Whether it sees through stored point `s`.
   [[nodiscard]] bool sees_through(const PixelLookup& pixels, const StoredPoint& s) const {
@@ -128,6 +128,12 @@ struct Judges {
   Judge now;
   std::optional<Judge> before;
   std::uint32_t arrived = 0;
+  /// Whether a point stamped `stamp` came in the last update and there is a scan before its own.
+  [[nodiscard]] bool is_arrival(std::uint32_t stamp) const { return before && stamp == arrived; }
+  /// Whether stored point `s` is seen through: by this scan, or (an arrival) by the one before.
+  [[nodiscard]] bool clear(const PixelLookup& pixels, const StoredPoint& s) const {
+    return now.sees_through(pixels, s) || (is_arrival(s.stamp) && before->sees_through(pixels, s));
+  }
   [[nodiscard]] bool may_see(const Aabb& box) const {
     return now.sight.may_see(box) || (before && before->sight.may_see(box));
   }
@@ -213,9 +219,6 @@ void stream_points(const std::vector<Visit>& visits, Now& now, Arrivals& arrival
     const float* z = y + leaf.stride;
     for (std::uint32_t i = 0; i < leaf.points; ++i) now.add(x[i], y[i], z[i], leaf.first + i);
     if constexpr (kArrivals) {
-      bool any = false;  // a leaf without arrivals (most) is passed over in vector code
-      for (std::uint32_t i = 0; i < leaf.points; ++i) any |= leaf.stamps[i] == arrived;
-      if (!any) continue;
       for (std::uint32_t i = 0; i < leaf.points; ++i) {
         if (leaf.stamps[i] == arrived) arrivals.add(x[i], y[i], z[i], leaf.first + i);
       }
@@ -267,11 +270,8 @@ class Clearing {
 /// Clears from `tree` and `displaced` what the judges see through.
 void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judges& judges,
                         std::vector<StoredPoint>& displaced, UpdateStats& stats) {
-  const auto is_arrival = [&](std::uint32_t stamp) { return judges.before && stamp == judges.arrived; };
   std::erase_if(displaced, [&](const StoredPoint& s) {
-    if (!judges.now.sees_through(pixels, s) && !(is_arrival(s.stamp) && judges.before->sees_through(pixels, s))) {
-      return false;
-    }
+    if (!judges.clear(pixels, s)) return false;
     ++stats.cleared;
     tree.forget(s);
     return true;
@@ -280,14 +280,15 @@ void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judges& jud
   std::vector<Visit> visits;
   Verdicts verdicts;
   std::size_t seen = 0;
+  verdicts.resize(look_into(tree, tree.root(), kNone, judges, visits, 0));
+  // The two scans' groups go out interleaved: a point either sees through is marked and counted once.
   const auto judged_by = [&](const SeenThrough& seen_through) {
     return [&](std::uint32_t tag, std::uint32_t pixel, double squared_range) {
-      if (verdicts[tag] != 0 || !seen_through(pixel, squared_range)) return;
+      if (!seen_through(pixel, squared_range) || verdicts[tag] != 0) return;
       verdicts[tag] = 1;
       ++seen;
     };
   };
-  verdicts.resize(look_into(tree, tree.root(), kNone, judges, visits, 0));
   const auto by_now = judged_by(judges.now.seen_through);
   PixelStream<decltype(by_now), PixelLookup::Reach::SquaredRange> now_stream(pixels, by_now);
   Sink now(judges.now.sight.pose(), now_stream);
@@ -325,20 +326,16 @@ void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vect
   if (!config.clearing.enabled) return;
   Tree::ClearingMemory& memory = tree.clearing_memory();
   const PixelLookup pixels(config.sensor, memory.pixel_tables);
-  const RangeImage image(pixels, scan, memory.image);
-  const Sight sight(motion, config.sensor);
-  Judges judges{{sight, SeenThrough(image, config.clearing.margin)}, std::nullopt, motion.frame - 1};
+  const double margin = config.clearing.margin;
+  Judges judges{{Sight(motion, config.sensor), SeenThrough(RangeImage(pixels, scan, memory.image), margin)},
+                std::nullopt, motion.frame - 1};
   // the points the last update brought in were stamped frame - 1; the scan before theirs, frame - 2
   const Tree::EarlierImage& before = memory.earlier[1];
   const bool arrivals = judges_arrivals(config);
-  std::optional<RangeImage> before_image;
-  std::optional<Sight> before_sight;
   if (arrivals && motion.frame > 2 && before.frame == motion.frame - 2) {
     Motion then = motion;
     then.pose = before.pose;
-    before_sight.emplace(then, config.sensor);
-    before_image.emplace(pixels, before.storage);
-    judges.before.emplace(Judge{*before_sight, SeenThrough(*before_image, config.clearing.margin)});
+    judges.before.emplace(Judge{Sight(then, config.sensor), SeenThrough(RangeImage(pixels, before.storage), margin)});
   }
   clear_seen_through(tree, pixels, judges, displaced, stats);
   if (arrivals) keep_image(memory, motion);
