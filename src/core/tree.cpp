@@ -9,7 +9,7 @@ namespace eco::detail {
 
 Tree::Tree(const Config& config)
     : cfg_(config),
-      points_(Columns{config.max_age_frames > 0 || judges_arrivals(config), config.attributes.ids,
+      points_(Columns{config.max_age_frames > 0, config.attributes.ids,
                       config.attributes.intensity, config.attributes.time}) {
   cfg_.validate();
   min_leaf_depth_ = cfg_.recentring == Recentring::Quantised ? int(cfg_.quantum_levels) : 0;
@@ -262,9 +262,10 @@ std::size_t Tree::buffer_bytes() const {
   const BatchBuffers& b = batch_buffers_;
   return (scratch_.capacity() + b.scan.capacity() + b.points.capacity()) * sizeof(StoredPoint) +
          (b.slot_of.capacity() + b.group_start.capacity() + b.group_end.capacity()) * sizeof(std::uint32_t) +
-         (clearing_memory_.image.capacity() + clearing_memory_.earlier[0].storage.capacity() +
-          clearing_memory_.earlier[1].storage.capacity() + clearing_memory_.pixel_tables.capacity()) *
-             sizeof(double);
+         (clearing_memory_.image.storage.capacity() + clearing_memory_.before.storage.capacity() +
+          clearing_memory_.pixel_tables.capacity()) *
+             sizeof(double) +
+         clearing_memory_.leaving.capacity() * sizeof(StoredPoint);
 }
 
 std::uint32_t Tree::start_node(const Cell& cell, Cell& at) {

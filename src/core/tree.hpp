@@ -24,8 +24,8 @@
 
 namespace eco::detail {
 
-/// Whether free-space clearing judges the points an update brought in once more at the next
-/// (FreeSpaceClearing::arrivals): it needs each point's frame stamp.
+/// Whether free-space clearing judges the points an update brings in against the scan before
+/// (FreeSpaceClearing::arrivals).
 inline bool judges_arrivals(const Config& c) { return c.clearing.enabled && c.clearing.arrivals; }
 
 /// Nodes at one depth, indexed by their cell: where insertion starts instead of the root
@@ -117,13 +117,15 @@ class Tree {
   void insert_batch(std::vector<StoredPoint>& batch);
   /// Inserts the new points `collect(push)` hands to push(const StoredPoint&), in batches of at
   /// most kInsertChunk through buffers the tree keeps: no frame pays for fresh pages, and the
-  /// buffers stay small however many points a frame brings. Returns how many.
-  template <class Collect>
-  std::size_t insert_collected(Collect&& collect) {
+  /// buffers stay small however many points a frame brings. Each batch is shown to
+  /// `look(const std::vector<StoredPoint>&)` before it goes in. Returns how many.
+  template <class Collect, class Look>
+  std::size_t insert_collected(Collect&& collect, Look&& look) {
     std::vector<StoredPoint>& batch = batch_buffers_.scan;
     std::size_t n = 0;
     const auto insert = [&] {
       n += batch.size();
+      look(std::as_const(batch));
       insert_batch(batch);
       batch.clear();
     };
@@ -145,18 +147,19 @@ class Tree {
   std::size_t judge_density(const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed) {
     return judge_group(density_, density_grid_, cfg_.density_cap, points, n, passed);
   }
-  /// A range image kept from an earlier update, with that update's frame and pose.
-  struct EarlierImage {
+  /// A scan's range image (src/update/range_image.hpp), with its update's frame and pose.
+  struct KeptImage {
     std::vector<double> storage;
     std::uint32_t frame = 0;  // 0: none yet
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   };
-  /// What free-space clearing keeps between frames (src/update/free_space.cpp), so that no frame
-  /// pays for fresh pages or computes the sensor's tables again; counted in bytes().
+  /// What free-space clearing keeps between frames (src/update/free_space.cpp, arrivals.cpp), so
+  /// that no frame pays for fresh pages or computes the sensor's tables again; counted in bytes().
   struct ClearingMemory {
-    std::vector<double> image;            // this update's range image (src/update/range_image.hpp)
-    std::array<EarlierImage, 2> earlier;  // the last update's and the one's before (clearing.arrivals)
-    std::vector<double> pixel_tables;     // the pixel lookup's walls and bins (src/update/pixel_lookup.hpp)
+    KeptImage image;                   // this update's scan
+    KeptImage before;                  // the last update's (clearing.arrivals)
+    std::vector<double> pixel_tables;  // the pixel lookup's walls and bins (src/update/pixel_lookup.hpp)
+    std::vector<StoredPoint> leaving;  // arrivals into space the scan before saw empty: they leave next update
   };
   ClearingMemory& clearing_memory() { return clearing_memory_; }
   /// Fills the start table (where insertion starts) from the current tree at `depth`.

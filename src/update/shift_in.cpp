@@ -1,8 +1,10 @@
 #include "update/admission.hpp"
+#include "update/arrivals.hpp"
 #include "update/stages.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace eco::detail {
 
@@ -24,10 +26,10 @@ int start_depth(const Tree& t, const Motion& motion) {
 }  // namespace
 
 void insert_shift_in(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint> displaced,
-                     UpdateStats& stats) {
+                     const Tree::KeptImage* before, UpdateStats& stats) {
   place_start_table(tree, motion);
   reinsert(tree, displaced, stats);
-  insert_scan(tree, motion, scan, stats);
+  insert_scan(tree, motion, scan, before, stats);
 }
 
 void place_start_table(Tree& tree, const Motion& motion) { tree.rebuild_start_table(start_depth(tree, motion)); }
@@ -58,7 +60,8 @@ std::size_t drop_aged(const Tree& tree, AdmittedGroup& group, const Stored& stor
 
 }  // namespace
 
-void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats) {
+void insert_scan(Tree& tree, const Motion& motion, ScanView scan, const Tree::KeptImage* before,
+                 UpdateStats& stats) {
   static_assert(kAdmitGroup <= kDensityGroup, "an admitted group is judged whole");
   const Columns& kept = tree.points().columns();
   const std::uint32_t stamp = kept.stamps ? motion.frame : 0;
@@ -66,6 +69,11 @@ void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& s
   const auto stored = [&](const std::array<float, 3>& p, std::uint32_t i) {
     return StoredPoint{p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
                        kept.times ? float(scan.times[i] - motion.clock.origin) : 0.0f};
+  };
+  std::optional<ArrivalCheck> arrivals;
+  if (before != nullptr) arrivals.emplace(tree, motion, *before);
+  const auto check = [&](const std::vector<StoredPoint>& batch) {
+    if (arrivals) (*arrivals)(batch);
   };
   stats.inserted = tree.insert_collected([&](auto&& insert) {
     admission(motion, tree.config().insert_policy).for_each_group(scan, stats, [&](AdmittedGroup& group) {
@@ -77,7 +85,7 @@ void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& s
         if (passed[j] != 0) insert(stored(group.points[j], group.index[j]));
       }
     });
-  });
+  }, check);
 }
 
 }  // namespace eco::detail

@@ -16,6 +16,11 @@ namespace eco::detail {
 
 /// Every stage counts what it does in the frame's `stats`.
 ///
+/// 0. Arrivals' release (clearing.arrivals): the points the last update brought in where the scan
+///    before theirs saw empty space (the rule in include/eco/config.hpp) leave the tree, counted
+///    as cleared: they were held for that one update. Runs before anything else moves them.
+void release_arrivals(Tree& tree, UpdateStats& stats);
+
 /// 1. Ego-motion: the new pose, precision origin and ego box (AABBs stay in the world; only the
 ///    query box moves), and the clock after `scan`'s times. When the precision origin moved (once
 ///    per ~2 km), every held point is re-expressed and handed back in `displaced`; when the time
@@ -37,8 +42,10 @@ void prune_shift_out(Tree& tree, const Motion& motion, UpdateStats& stats);
 
 /// 2b. Free-space clearing (Config::clearing, off by default): takes out of the tree and of
 ///    `displaced` the held points the scan sees through (the rule in include/eco/config.hpp).
-void clear_free_space(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint>& displaced,
-                      UpdateStats& stats);
+///    Returns, with clearing.arrivals, the last update's scan (kept by the tree), against which
+///    stage 4 judges the points it brings in; null otherwise.
+const Tree::KeptImage* clear_free_space(Tree& tree, const Motion& motion, ScanView scan,
+                                        std::vector<StoredPoint>& displaced, UpdateStats& stats);
 
 /// 3. Overlap refinement (R_over): re-centre the root on the sensor. Quantised: re-link the
 ///    lattice-fixed depth-k subtrees under new top levels. Exact: rebuild the subtrees whose bounds
@@ -48,15 +55,17 @@ std::vector<StoredPoint> refine_overlap(Tree& tree, const Motion& motion, std::v
                                         UpdateStats& stats);
 
 /// 4. Shift-in (R_in): put `displaced` back, then transform the scan points the insert policy
-///    admits, pass them through the density cap (in scan order) and insert them as one batch,
-///    partitioned top-down from the movement-aware start depth rather than the root.
+///    admits, pass them through the density cap (in scan order) and insert them in batches,
+///    partitioned top-down from the movement-aware start depth rather than the root. The new
+///    points that `before` (if any) saw through are noted to leave at the next update (stage 0).
 void insert_shift_in(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint> displaced,
-                     UpdateStats& stats);
+                     const Tree::KeptImage* before, UpdateStats& stats);
 /// Stage 4's parts, for the baselines: where insertion starts (the movement-aware start depth
 /// for `motion`), putting `points` back (left empty, capacity kept), and taking in the scan.
 void place_start_table(Tree& tree, const Motion& motion);
 void reinsert(Tree& tree, std::vector<StoredPoint>& points, UpdateStats& stats);
-void insert_scan(Tree& tree, const Motion& motion, ScanView scan, UpdateStats& stats);
+void insert_scan(Tree& tree, const Motion& motion, ScanView scan, const Tree::KeptImage* before,
+                 UpdateStats& stats);
 
 /// One update (EgoOctree::update): begin_update(), then the four stages. Returns the frame's
 /// statistics.

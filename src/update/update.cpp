@@ -100,11 +100,12 @@ UpdateStats detail::begin_update(const Config& config, const Eigen::Isometry3d& 
 
 UpdateStats detail::run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
   UpdateStats stats = begin_update(tree.config(), world_T_sensor, scan);
+  release_arrivals(tree, stats);                                                   // 0. held one update
   auto [motion, displaced] = advance_ego_motion(tree, world_T_sensor, scan, stats); // 1. pose, box, clock
   prune_shift_out(tree, motion, stats);                                            // 2. R_out
-  clear_free_space(tree, motion, scan, displaced, stats);                          //    seen through
+  const auto* before = clear_free_space(tree, motion, scan, displaced, stats);     //    seen through
   displaced = refine_overlap(tree, motion, std::move(displaced), stats);           // 3. R_over
-  insert_shift_in(tree, motion, scan, std::move(displaced), stats);                // 4. R_in
+  insert_shift_in(tree, motion, scan, std::move(displaced), before, stats);        // 4. R_in
   return stats;
 }
 

@@ -1,0 +1,119 @@
+#include "update/arrivals.hpp"
+
+#include "update/pixel_stream.hpp"
+#include "update/stages.hpp"
+#include "update/subtree_filter.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <utility>
+
+namespace eco::detail {
+
+ArrivalCheck::ArrivalCheck(Tree& tree, const Motion& motion, const Tree::KeptImage& before)
+    : pixels_(tree.config().sensor, tree.clearing_memory().pixel_tables),
+      judge_{Sight(before.pose, motion.anchor, tree.config().sensor),
+             SeenThrough(RangeImage(pixels_, before.storage), tree.config().clearing.margin)},
+      leaving_(tree.clearing_memory().leaving) {}
+
+void ArrivalCheck::operator()(const std::vector<StoredPoint>& batch) {
+  const auto take = [&](std::uint32_t tag, std::uint32_t pixel, double squared_range) {
+    if (judge_.seen_through(pixel, squared_range)) leaving_.push_back(batch[tag]);
+  };
+  PixelStream<decltype(take), PixelLookup::Reach::SquaredRange> stream(pixels_, take);
+  Sink sink(judge_.sight.pose(), stream);
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    sink.add(batch[i].p[0], batch[i].p[1], batch[i].p[2], std::uint32_t(i));
+  }
+  sink.flush();
+}
+
+namespace {
+
+/// Whether two stored points are the same to the bit, every column (an intensity may be NaN).
+bool same(const StoredPoint& a, const StoredPoint& b) {
+  const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
+  return bits(a.p[0]) == bits(b.p[0]) && bits(a.p[1]) == bits(b.p[1]) && bits(a.p[2]) == bits(b.p[2]) &&
+         a.stamp == b.stamp && a.id == b.id && bits(a.intensity) == bits(b.intensity) && bits(a.time) == bits(b.time);
+}
+
+/// The leaf whose cell holds stored coordinates `p`, or kNone.
+std::uint32_t leaf_holding(const Tree& t, const std::array<float, 3>& p) {
+  std::uint32_t id = t.root();
+  Cell cell = t.root_cell();
+  while (id != kNone && !t.nodes()[id].leaf) {
+    const int o = t.lattice().octant(cell, p);
+    id = t.nodes().child(id, o);
+    cell = t.lattice().child(cell, o);
+  }
+  return id;
+}
+
+/// A filter of filter_subtree that takes the leaving points out of the leaves holding them:
+/// `marked` (sorted) lists those leaves and their ancestors, `at` (sorted) each leaving point's
+/// leaf and index.
+class Release {
+ public:
+  Release(Tree& tree, const std::vector<StoredPoint>& leaving, const std::vector<std::uint32_t>& marked,
+          const std::vector<std::pair<std::uint32_t, std::uint32_t>>& at)
+      : t_(tree), leaving_(leaving), marked_(marked), at_(at) {}
+
+  [[nodiscard]] Verdict judge(std::uint32_t id, const Node&) const {
+    return std::binary_search(marked_.begin(), marked_.end(), id) ? Verdict::LookInside : Verdict::KeepAll;
+  }
+  void drop(std::uint32_t) {}  // never judged DropAll
+  bool filter_leaf(std::uint32_t id) {
+    const auto first = std::lower_bound(at_.begin(), at_.end(), std::pair{id, 0u});
+    auto last = first;
+    while (last != at_.end() && last->first == id) ++last;
+    const std::size_t before = released_;
+    // each leaving point takes one held point equal to it (equal ones are interchangeable)
+    std::vector<char> taken(std::size_t(last - first), 0);
+    t_.retain(id, [&](const StoredPoint& s) {
+      for (auto k = first; k != last; ++k) {
+        char& used = taken[std::size_t(k - first)];
+        if (used == 0 && same(s, leaving_[k->second])) {
+          used = 1;
+          ++released_;
+          return false;
+        }
+      }
+      return true;
+    });
+    return released_ != before;
+  }
+  [[nodiscard]] std::size_t released() const { return released_; }
+
+ private:
+  Tree& t_;
+  const std::vector<StoredPoint>& leaving_;
+  const std::vector<std::uint32_t>& marked_;
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& at_;
+  std::size_t released_ = 0;
+};
+
+}  // namespace
+
+void release_arrivals(Tree& tree, UpdateStats& stats) {
+  std::vector<StoredPoint>& leaving = tree.clearing_memory().leaving;
+  if (leaving.empty()) return;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> at;
+  std::vector<std::uint32_t> marked;
+  for (std::size_t k = 0; k < leaving.size(); ++k) {
+    const std::uint32_t leaf = leaf_holding(tree, leaving[k].p);
+    if (leaf == kNone) continue;
+    at.emplace_back(leaf, std::uint32_t(k));
+    for (std::uint32_t id = leaf; id != kNone; id = tree.nodes()[id].parent) marked.push_back(id);
+  }
+  std::sort(at.begin(), at.end());
+  std::sort(marked.begin(), marked.end());
+  marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
+  Release release(tree, leaving, marked, at);
+  if (tree.root() != kNone && filter_subtree(tree, tree.root(), release) == Filtered::Gone) {
+    tree.place_root(tree.root_cell(), tree.lattice());
+  }
+  stats.cleared += release.released();
+  leaving.clear();
+}
+
+}  // namespace eco::detail

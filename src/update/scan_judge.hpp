@@ -1,0 +1,134 @@
+#pragma once
+// A scan as free-space clearing's judge of held points (the rule in include/eco/config.hpp): where
+// it was taken from, and its range image. Shared by the clearing stage (src/update/free_space.cpp)
+// and the arrivals' check at insertion (src/update/arrivals.cpp).
+
+#include "core/geometry.hpp"
+#include "update/clearing_rule.hpp"
+#include "update/pixel_lookup.hpp"
+#include "update/range_image.hpp"
+#include "update/sensor_frame.hpp"
+
+#include <eco/config.hpp>
+
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+namespace eco::detail {
+
+/// Where the sensor looked from: held points in its frame, and which subtrees lie wholly beyond
+/// its range or outside its vertical field of view (none of their points has a pixel).
+class Sight {
+ public:
+  /// The sensor at `world_T_sensor`, for points stored against the precision origin `anchor`.
+  Sight(const Eigen::Isometry3d& world_T_sensor, const Eigen::Vector3d& anchor, const SensorModel& sensor)
+      : sensor_from_anchor_(anchor - world_T_sensor.translation()),
+        pose_(world_T_sensor.linear().transpose(), sensor_from_anchor_),
+        up_(world_T_sensor.linear().col(2)),  // sensor_R_world's third row
+        sin_fov_min_(std::sin(sensor.vertical_fov_min * kRadiansPerDegree)),
+        sin_fov_max_(std::sin(sensor.vertical_fov_max * kRadiansPerDegree)),
+        max_range_(sensor.max_range) {}
+
+  /// The sensor's frame: held points' stored coordinates into it.
+  [[nodiscard]] const SensorPose& pose() const { return pose_; }
+  /// Whether some point of `box` (anchor frame) may lie in the sensor's image.
+  [[nodiscard]] bool may_see(const Aabb& box) const {
+    const Eigen::Vector3d sensor = -sensor_from_anchor_;  // in the anchor frame
+    const double squared_nearest = box.sq_dist({sensor[0], sensor[1], sensor[2]});
+    // widened against rounding: a point's range is computed after the rotation
+    const double reach = max_range_ * (1.0 + 1e-9) + 1e-9;
+    return squared_nearest <= reach * reach && !outside_field_of_view(box, squared_nearest);
+  }
+
+ private:
+  static constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+
+  /// Whether every point of `box` (anchor frame; the square of its distance from the sensor
+  /// `squared_nearest`) lies below or above the vertical field of view: sin(elevation) = (p -
+  /// sensor) . up / |p - sensor|, bounded over the box, with a slack far above the rounding of the
+  /// pixel formulas.
+  [[nodiscard]] bool outside_field_of_view(const Aabb& box, double squared_nearest) const {
+    const Eigen::Vector3d lo(box.lo[0], box.lo[1], box.lo[2]), hi(box.hi[0], box.hi[1], box.hi[2]);
+    const Eigen::Vector3d centre = 0.5 * (lo + hi) + sensor_from_anchor_;  // from the sensor, world axes
+    const Eigen::Vector3d half = 0.5 * (hi - lo);
+    const double height = up_.dot(centre), spread = up_.cwiseAbs().dot(half);  // (p - sensor) . up
+    const double farthest = (centre.cwiseAbs() + half).norm();
+    const double slack = 1e-6 * farthest;
+    // the box's distance is needed for a field of view wholly above or below the horizon only
+    if (height + spread + slack < sin_fov_min_ * (sin_fov_min_ <= 0.0 ? farthest : std::sqrt(squared_nearest))) {
+      return true;
+    }
+    return height - spread - slack > sin_fov_max_ * (sin_fov_max_ >= 0.0 ? farthest : std::sqrt(squared_nearest));
+  }
+
+  Eigen::Vector3d sensor_from_anchor_;  // anchor - sensor position: stored point + this = sensor-relative, world axes
+  SensorPose pose_;
+  Eigen::Vector3d up_;                  // the sensor's z axis, world axes
+  double sin_fov_min_ = 0.0, sin_fov_max_ = 0.0;
+  double max_range_ = 0.0;
+};
+
+/// The scan's verdict on held points: seen through or not.
+class SeenThrough {
+ public:
+  SeenThrough(RangeImage image, double margin) : image_(image), margin_(margin) {}
+  /// For a held point at `pixel` (or kOutside), |v|^2 = `squared_range` from the sensor: a pixel
+  /// with no return around it (kNoReturn) is not evidence of free space.
+  [[nodiscard]] bool operator()(std::uint32_t pixel, double squared_range) const {
+    if (pixel == PixelLookup::kOutside) return false;
+    const double nearest = image_.nearest_around(pixel);
+    return nearest != RangeImage::kNoReturn && lies_beyond(nearest, squared_range, margin_);
+  }
+
+ private:
+  RangeImage image_;  // a view of storage the tree keeps
+  double margin_ = 0.0;
+};
+
+/// A scan that judges held points: where it was taken from, and its image.
+struct Judge {
+  Sight sight;
+  SeenThrough seen_through;
+  /// Whether it sees through the point stored at `p`.
+  [[nodiscard]] bool sees_through(const PixelLookup& pixels, const std::array<float, 3>& p) const {
+    const Eigen::Vector3d v = sight.pose().apply(p);
+    double range = 0.0;
+    return seen_through(pixels.pixel_of(v, range), v.squaredNorm());
+  }
+};
+
+/// A judge's end of a pixel stream: stored points, tagged, rotated into the sensor's frame a group
+/// at a time (in vector code) and handed to `stream` (a PixelStream).
+template <class Stream>
+class Sink {
+ public:
+  Sink(const SensorPose& pose, Stream& stream) : pose_(pose), stream_(stream) {}
+  void add(float x, float y, float z, std::uint32_t tag) {
+    const std::size_t k = stored_.size++;
+    stored_.x[k] = x, stored_.y[k] = y, stored_.z[k] = z;
+    tags_[k] = tag;
+    if (stored_.size == PixelLookup::kGroup) send();
+  }
+  /// Sends what is left, then the stream's own leftovers.
+  void flush() {
+    send();
+    stream_.flush();
+  }
+
+ private:
+  void send() {
+    to_sensor_frame(pose_, stored_, group_);
+    stream_.push_group(group_, tags_);
+    stored_.size = 0;
+  }
+  const SensorPose& pose_;
+  Stream& stream_;
+  StoredGroup stored_;
+  PixelLookup::Group group_;
+  std::array<std::uint32_t, PixelLookup::kGroup> tags_{};
+};
+
+}  // namespace eco::detail
