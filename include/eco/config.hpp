@@ -76,8 +76,8 @@ struct SensorModel {
 /// time, by the same rule, against the scan before the one that brought it (from that scan's
 /// pose), and cleared when that scan saw through where it lies: it filled space seen empty a frame
 /// earlier — something moved in — so it is held until the next update only, and a car coming
-/// toward the sensor, hiding where it was, leaves no trail. It costs a frame stamp per held point
-/// (4 bytes) and two more range images.
+/// toward the sensor, hiding where it was, leaves no trail. The update judges each point as it
+/// comes in and notes those that leave at the next; it keeps one more range image.
 /// The sensor is Config::sensor.
 struct FreeSpaceClearing {
   bool enabled = false;   ///< off by default: the paper's behaviour, every trail kept

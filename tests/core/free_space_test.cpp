@@ -88,6 +88,64 @@ INSTANTIATE_TEST_SUITE_P(Modes, ClearingOracle,
                                   (std::get<2>(p.param) ? "_Arrivals" : "");
                          });
 
+/// Arrivals leave one update after they came, found by every column: with ids, intensities and
+/// times kept, repeated points (equal coordinates, their own ids), the precision origin moving
+/// and the time origin moving (7.3 s a frame) while arrivals wait to leave.
+TEST(Clearing, ArrivalsLeaveWithTheirAttributesAcrossOriginMoves) {
+  const sim::Simulator drive(small_drive(24, 5));
+  Config cfg;
+  cfg.box_side = 40.0;
+  cfg.clearing.enabled = true;
+  cfg.clearing.margin = 0.3;
+  cfg.clearing.arrivals = true;
+  cfg.sensor = model_of(drive.config().lidar);
+  cfg.attributes = {true, true, true};
+  Config rays_only = cfg;
+  rays_only.clearing.arrivals = false;
+  EgoOctree tree(cfg), without_arrivals(rays_only);
+  Oracle oracle(cfg);
+  std::size_t cleared = 0, cleared_without = 0;
+  int rebases = 0, clock_moves = 0;
+  double time_origin = tree.time_origin();
+  const double x10 = drive.pose(10).translation().x();
+  for (std::size_t t = 0; t < drive.size(); ++t) {
+    SCOPED_TRACE("frame " + std::to_string(t));
+    sim::SimFrame frame = drive.frame(t);
+    if (t >= 10) frame.world_T_lidar.translation().x() += 2040.0 - x10 + 3.0 * double(t - 10);
+    std::vector<Eigen::Vector3f> points = frame.cloud.points;
+    ScanAttributes attributes;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (i % 13 == 7) points[i] = points[i - 1];  // a repeated point with an id of its own
+      attributes.ids.push_back(std::uint32_t(t * 1000000 + i));
+      attributes.intensities.push_back(float(i % 97) / 7.0f);
+      attributes.times.push_back(1.7e9 + 7.3 * double(t) + 1e-5 * double(i));
+    }
+    ScanView scan(points);
+    scan.ids = attributes.ids.data();
+    scan.intensities = attributes.intensities.data();
+    scan.times = attributes.times.data();
+    const UpdateStats& u = tree.update(frame.world_T_lidar, scan);
+    oracle.update(frame.world_T_lidar, points, tree.precision_origin(), attributes, tree.time_origin());
+    cleared += u.cleared;
+    cleared_without += without_arrivals.update(frame.world_T_lidar, scan).cleared;
+    rebases += u.rebased ? 1 : 0;
+    clock_moves += t > 0 && tree.time_origin() != time_origin ? 1 : 0;
+    time_origin = tree.time_origin();
+    ASSERT_EQ(tree.check_invariants(), "");
+    std::vector<HeldPoint> held = tree.points_with_attributes();
+    Oracle::sort_held(held);
+    const std::vector<HeldPoint> expected = oracle.points_with_attributes();
+    ASSERT_EQ(held.size(), expected.size());
+    for (std::size_t i = 0; i < held.size(); ++i) {
+      ASSERT_EQ(held[i].point, expected[i].point) << i;
+      ASSERT_EQ(held[i].attributes, expected[i].attributes) << "point " << expected[i].point.transpose();
+    }
+  }
+  EXPECT_GT(cleared, cleared_without + 100) << "no arrival was cleared";
+  EXPECT_GE(rebases, 1) << "the precision origin never moved";
+  EXPECT_GE(clock_moves, 1) << "the time origin never moved";
+}
+
 TEST(Clearing, OffChangesNothing) {
   const sim::Simulator drive(small_drive(12, 6));
   Config on;
