@@ -71,7 +71,7 @@ const std::array<ConfigField, 22> kFields{{
      ECO_FIELD_ACCESS(clearing.margin, double)},
     {"clearing.arrivals", ConfigField::Kind::Switch, "",
      "clearing: a point that arrived where the scan before saw empty space (something moved in) is held "
-     "until the next update only; off by default",
+     "until the next update only; on by default (it acts only while clearing is enabled)",
      0.0, 1.0, false, kSwitch, ECO_FIELD_ACCESS(clearing.arrivals, bool)},
     {"sensor.vertical_fov_min", ConfigField::Kind::Real, "deg", "elevation of the sensor's lowest beam", -90.0,
      90.0, false, {}, ECO_FIELD_ACCESS(sensor.vertical_fov_min, double)},

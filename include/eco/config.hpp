@@ -72,17 +72,18 @@ struct SensorModel {
 /// beyond max_range, or where a row around them got no return (a gap between beams, the sky) are
 /// kept. The test uses the update's pose and every finite return of the scan (in the box or not)
 /// and runs after the box moved (stage 2), before the scan's points are inserted.
-/// With `arrivals` (off by default), a point the previous update brought in is judged a second
-/// time, by the same rule, against the scan before the one that brought it (from that scan's
-/// pose), and cleared when that scan saw through where it lies: it filled space seen empty a frame
-/// earlier — something moved in — so it is held until the next update only, and a car coming
-/// toward the sensor, hiding where it was, leaves no trail. The update judges each point as it
-/// comes in and notes those that leave at the next; it keeps one more range image.
+/// With `arrivals` (on by default; it acts while clearing is enabled), a point the previous update
+/// brought in is judged a second time, by the same rule, against the scan before the one that
+/// brought it (from that scan's pose), and cleared when that scan saw through where it lies: it
+/// filled space seen empty a frame earlier — something moved in — so it is held until the next
+/// update only, and a car coming toward the sensor, hiding where it was, leaves no trail. The
+/// update judges each point as it comes in and notes those that leave at the next; it keeps one
+/// more range image. Turn it off for the cheaper rule alone (~5 % less update time).
 /// The sensor is Config::sensor.
 struct FreeSpaceClearing {
   bool enabled = false;   ///< off by default: the paper's behaviour, every trail kept
   double margin = 0.3;    ///< [m] a return must lie this much beyond a point to clear it; >= 0.01.
-  bool arrivals = false;  ///< also clear arrivals into space the scan before saw empty (above)
+  bool arrivals = true;   ///< also clear arrivals into space the scan before saw empty (above)
 };
 
 /// Which per-point attributes of the scans (ScanView::ids, intensities, times) the tree stores and

@@ -44,7 +44,7 @@ def test_defaults_are_the_cpp_defaults():
         "max_age_frames": 0,
         "max_age_seconds": 0.0,
         "attributes": {"ids": False, "intensity": False, "time": False},
-        "clearing": {"enabled": False, "margin": 0.3, "arrivals": False},
+        "clearing": {"enabled": False, "margin": 0.3, "arrivals": True},
         "sensor": {"vertical_fov_min": -24.9, "vertical_fov_max": 2.0, "vertical_resolution": 0.42,
                    "horizontal_resolution": 0.2, "max_range": 100.0},
         "voxel_size": 0.1,
