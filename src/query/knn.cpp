@@ -163,8 +163,8 @@ class KnnSearch {
       if (t_.nodes().child(id, o) == detail::kNone) continue;
       order[std::size_t(m++)] = {gap[0][std::size_t(o & 1)] + gap[1][std::size_t(o >> 1 & 1)] + gap[2][std::size_t(o >> 2)], o};
     }
-    for (int i = 1; i < m; ++i) {  // insertion sort: at most eight children
-      for (int j = i; j > 0 && order[std::size_t(j)] < order[std::size_t(j - 1)]; --j) {
+    for (int i = 1; i < m; ++i) {  // insertion sort, stable (equal gaps stay in octant order): at most eight children
+      for (int j = i; j > 0 && order[std::size_t(j)].first < order[std::size_t(j - 1)].first; --j) {
         std::swap(order[std::size_t(j)], order[std::size_t(j - 1)]);
       }
     }
