@@ -56,7 +56,7 @@ class Release {
  public:
   Release(Tree& tree, const std::vector<StoredPoint>& leaving, const std::vector<std::uint32_t>& marked,
           const std::vector<std::pair<std::uint32_t, std::uint32_t>>& at)
-      : t_(tree), leaving_(leaving), marked_(marked), at_(at) {}
+      : t_(tree), leaving_(leaving), marked_(marked), at_(at), taken_(leaving.size(), 0) {}
 
   [[nodiscard]] Verdict judge(std::uint32_t id, const Node&) const {
     return std::binary_search(marked_.begin(), marked_.end(), id) ? Verdict::LookInside : Verdict::KeepAll;
@@ -68,12 +68,10 @@ class Release {
     while (last != at_.end() && last->first == id) ++last;
     const std::size_t before = released_;
     // each leaving point takes one held point equal to it (equal ones are interchangeable)
-    std::vector<char> taken(std::size_t(last - first), 0);
     t_.retain(id, [&](const StoredPoint& s) {
       for (auto k = first; k != last; ++k) {
-        char& used = taken[std::size_t(k - first)];
-        if (used == 0 && same(s, leaving_[k->second])) {
-          used = 1;
+        if (taken_[k->second] == 0 && same(s, leaving_[k->second])) {
+          taken_[k->second] = 1;
           ++released_;
           return false;
         }
@@ -89,6 +87,7 @@ class Release {
   const std::vector<StoredPoint>& leaving_;
   const std::vector<std::uint32_t>& marked_;
   const std::vector<std::pair<std::uint32_t, std::uint32_t>>& at_;
+  std::vector<char> taken_;  // per leaving point: found and taken out
   std::size_t released_ = 0;
 };
 

@@ -37,7 +37,7 @@ struct Visit {
 };
 using Verdicts = std::vector<char>;
 
-/// Pass 1, the nodes: appends to `visits` the nodes under `id` whose bounds a judge may see;
+/// Pass 1, the nodes: appends to `visits` the nodes under `id` whose bounds `sight` may see;
 /// returns the points their leaves hold, numbered from `first`.
 std::uint32_t look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, const Sight& sight,
                         std::vector<Visit>& visits, std::uint32_t first) {
