@@ -75,32 +75,37 @@ class KnnSearch {
   std::size_t run() {
     if (results_.capacity() == 0 || t_.root() == detail::kNone) return found_;
     const detail::Lattice& lattice = t_.lattice();
-    Step path[kMaxPath];  // as a plain array the compiler no longer zeroes it first (~7 % of a query)
+    Step path[kMaxPath];  // trivial, so left unwritten until used (zeroing it was ~10 % of a query)
     std::size_t deepest = 0;
-    path[0] = {t_.root(), t_.root_cell()};
-    if (inside_gap(path[0].cell) > 0.0) {
+    path[0] = Step(t_.root(), t_.root_cell());
+    if (inside_gap(path[0].cell()) > 0.0) {
       while (!t_.nodes()[path[deepest].id].leaf && deepest + 1 < kMaxPath) {
-        const auto& [id, cell] = path[deepest];
+        const detail::Cell cell = path[deepest].cell();
         const int o = lattice.octant(cell, q_);
-        const std::uint32_t child = t_.nodes().child(id, o);
+        const std::uint32_t child = t_.nodes().child(path[deepest].id, o);
         if (child == detail::kNone) break;
-        path[deepest + 1] = {child, lattice.child(cell, o)};
+        path[deepest + 1] = Step(child, lattice.child(cell, o));
         ++deepest;
       }
     }
     for (std::size_t level = deepest + 1; level-- > 0;) {
-      visit(path[level].id, path[level].cell);
-      if (found_ == results_.capacity() && worst_ < inside_gap(path[level].cell)) break;
+      const detail::Cell cell = path[level].cell();
+      visit(path[level].id, cell);
+      if (found_ == results_.capacity() && worst_ < inside_gap(cell)) break;
       searched_ = path[level].id;
     }
     return found_;
   }
 
  private:
-  /// A node on the way down to the query, with its cell.
+  /// A node on the way down to the query, with its cell (a trivial type: Cell initialises itself).
   struct Step {
+    Step() = default;
+    Step(std::uint32_t node, const detail::Cell& c) : id(node), lo(c.lo), depth(c.depth) {}
+    [[nodiscard]] detail::Cell cell() const { return {lo, depth}; }
     std::uint32_t id;
-    detail::Cell cell;
+    std::array<std::int64_t, 3> lo;
+    int depth;
   };
   static constexpr std::size_t kMaxPath = 64;  // nodes from the root down: more than Config's deepest level
   static constexpr std::uint32_t kDistances = 32;  // a leaf's points measured at a time (Config's default capacity)
@@ -157,20 +162,23 @@ class KnnSearch {
       const double below = std::max({lo - q_[a], 0.0, q_[a] - mid}), above = std::max({mid - q_[a], 0.0, q_[a] - hi});
       gap[std::size_t(a)] = {below * below, above * above};
     }
-    std::array<std::pair<double, int>, 8> order;
+    double gaps[8];  // of the children present, in octant order, then sorted: plain arrays, not zeroed
+    int octants[8];
     int m = 0;
     for (int o = 0; o < 8; ++o) {
       if (t_.nodes().child(id, o) == detail::kNone) continue;
-      order[std::size_t(m++)] = {gap[0][std::size_t(o & 1)] + gap[1][std::size_t(o >> 1 & 1)] + gap[2][std::size_t(o >> 2)], o};
+      gaps[m] = gap[0][std::size_t(o & 1)] + gap[1][std::size_t(o >> 1 & 1)] + gap[2][std::size_t(o >> 2)];
+      octants[m++] = o;
     }
     for (int i = 1; i < m; ++i) {  // insertion sort, stable (equal gaps stay in octant order): at most eight children
-      for (int j = i; j > 0 && order[std::size_t(j)].first < order[std::size_t(j - 1)].first; --j) {
-        std::swap(order[std::size_t(j)], order[std::size_t(j - 1)]);
+      for (int j = i; j > 0 && gaps[j] < gaps[j - 1]; --j) {
+        std::swap(gaps[j], gaps[j - 1]);
+        std::swap(octants[j], octants[j - 1]);
       }
     }
     for (int i = 0; i < m; ++i) {
-      if (order[std::size_t(i)].first >= worst()) break;
-      const int o = order[std::size_t(i)].second;
+      if (gaps[i] >= worst()) break;
+      const int o = octants[i];
       const std::uint32_t ch = t_.nodes().child(id, o);
       if (ch == searched_) continue;  // searched before its ancestors
       const detail::Node& child = t_.nodes()[ch];
