@@ -1,6 +1,7 @@
 // Free-space clearing (Config::clearing): against a brute-force copy of the rule after every frame
 // of a simulated drive with moving cars (both re-centring modes, with and without a density cap,
-// across precision-origin moves), and on a scripted scene: a car crossing in front of a wall.
+// arrivals and an age limit, across precision-origin moves), and on scripted scenes: a car crossing
+// in front of a wall, a car coming toward the sensor.
 
 #include "support/compare.hpp"
 #include "support/streams.hpp"
@@ -35,12 +36,12 @@ SensorModel model_of(const sim::LidarModel& lidar) {
   return m;
 }
 
-using Params = std::tuple<Recentring, bool, bool>;  // re-centring, capped, arrivals
+using Params = std::tuple<Recentring, bool, bool, bool>;  // re-centring, capped, arrivals, age limit
 
 class ClearingOracle : public ::testing::TestWithParam<Params> {};
 
 TEST_P(ClearingOracle, HeldSetMatchesTheRuleRayByRayEveryFrame) {
-  const auto [recentring, capped, arrivals] = GetParam();
+  const auto [recentring, capped, arrivals, aged] = GetParam();
   const sim::Simulator drive(small_drive(30, 4));
   Config cfg;
   cfg.recentring = recentring;
@@ -50,6 +51,7 @@ TEST_P(ClearingOracle, HeldSetMatchesTheRuleRayByRayEveryFrame) {
   cfg.clearing.arrivals = arrivals;
   cfg.sensor = model_of(drive.config().lidar);
   if (capped) cfg.density_cap = {0.5, 2};
+  if (aged) cfg.max_age_frames = 4;  // points age out while arrivals wait to leave (stamps kept)
   EgoOctree tree(cfg);
   Oracle oracle(cfg);
   Config rays_only = cfg;
@@ -57,7 +59,7 @@ TEST_P(ClearingOracle, HeldSetMatchesTheRuleRayByRayEveryFrame) {
   EgoOctree without_arrivals(rays_only);
   std::size_t cleared_without = 0;
   std::mt19937 rng(3);
-  std::size_t cleared = 0;
+  std::size_t cleared = 0, aged_out = 0;
   const double x10 = drive.pose(10).translation().x();
   bool rebased = false;
   for (std::size_t t = 0; t < drive.size(); ++t) {
@@ -68,6 +70,7 @@ TEST_P(ClearingOracle, HeldSetMatchesTheRuleRayByRayEveryFrame) {
     const UpdateStats& u = tree.update(frame.world_T_lidar, frame.cloud.points);
     oracle.update(frame.world_T_lidar, frame.cloud.points, tree.precision_origin());
     cleared += u.cleared;
+    aged_out += u.aged_out;
     cleared_without += without_arrivals.update(frame.world_T_lidar, frame.cloud.points).cleared;
     rebased = rebased || (u.rebased && t > 10);
     expect_same_answers(tree, oracle, rng, "frame " + std::to_string(t));
@@ -77,15 +80,16 @@ TEST_P(ClearingOracle, HeldSetMatchesTheRuleRayByRayEveryFrame) {
   if (arrivals) {
     EXPECT_GT(cleared, cleared_without + 100) << "no arrival was cleared";
   }
+  EXPECT_EQ(aged_out > 0, aged) << "points aged out only under the age limit";
   EXPECT_TRUE(rebased) << "the precision origin never moved under held points";
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, ClearingOracle,
                          ::testing::Combine(::testing::Values(Recentring::Quantised, Recentring::Exact),
-                                            ::testing::Bool(), ::testing::Bool()),
+                                            ::testing::Bool(), ::testing::Bool(), ::testing::Bool()),
                          [](const ::testing::TestParamInfo<Params>& p) {
                            return name(std::get<0>(p.param)) + (std::get<1>(p.param) ? "_Capped" : "") +
-                                  (std::get<2>(p.param) ? "_Arrivals" : "");
+                                  (std::get<2>(p.param) ? "_Arrivals" : "") + (std::get<3>(p.param) ? "_Aged" : "");
                          });
 
 /// Arrivals leave one update after they came, found by every column: with ids, intensities and
