@@ -9,8 +9,8 @@ namespace eco::detail {
 
 Tree::Tree(const Config& config)
     : cfg_(config),
-      points_(Columns{config.max_age_frames > 0, config.attributes.ids,
-                      config.attributes.intensity, config.attributes.time}) {
+      points_(Columns{config.max_age_frames > 0, config.attributes.ids, config.attributes.intensity,
+                      config.attributes.time}) {
   cfg_.validate();
   min_leaf_depth_ = cfg_.recentring == Recentring::Quantised ? int(cfg_.quantum_levels) : 0;
   lattice_.max_depth = cfg_.max_depth();

@@ -24,10 +24,6 @@
 
 namespace eco::detail {
 
-/// Whether free-space clearing judges the points an update brings in against the scan before
-/// (FreeSpaceClearing::arrivals).
-inline bool judges_arrivals(const Config& c) { return c.clearing.enabled && c.clearing.arrivals; }
-
 /// Nodes at one depth, indexed by their cell: where insertion starts instead of the root
 /// (the paper's movement-aware start depth; in Quantised mode depth k, a direct lattice lookup).
 struct StartTable {

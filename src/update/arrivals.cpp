@@ -63,9 +63,7 @@ class Release {
   }
   void drop(std::uint32_t) {}  // never judged DropAll
   bool filter_leaf(std::uint32_t id) {
-    const auto first = std::lower_bound(at_.begin(), at_.end(), std::pair{id, 0u});
-    auto last = first;
-    while (last != at_.end() && last->first == id) ++last;
+    const auto [first, last] = std::equal_range(at_.begin(), at_.end(), id, ByLeaf{});
     const std::size_t before = released_;
     // each leaving point takes one held point equal to it (equal ones are interchangeable)
     t_.retain(id, [&](const StoredPoint& s) {
@@ -83,6 +81,10 @@ class Release {
   [[nodiscard]] std::size_t released() const { return released_; }
 
  private:
+  struct ByLeaf {  // orders `at` entries and leaf ids by leaf
+    bool operator()(const std::pair<std::uint32_t, std::uint32_t>& a, std::uint32_t leaf) const { return a.first < leaf; }
+    bool operator()(std::uint32_t leaf, const std::pair<std::uint32_t, std::uint32_t>& a) const { return leaf < a.first; }
+  };
   Tree& t_;
   const std::vector<StoredPoint>& leaving_;
   const std::vector<std::uint32_t>& marked_;

@@ -159,7 +159,7 @@ const Tree::KeptImage* clear_free_space(Tree& tree, const Motion& motion, ScanVi
   const Config& config = tree.config();
   if (!config.clearing.enabled) return nullptr;
   Tree::ClearingMemory& memory = tree.clearing_memory();
-  const bool arrivals = judges_arrivals(config);
+  const bool arrivals = config.clearing.arrivals;
   if (arrivals) std::swap(memory.image, memory.before);  // the last update's image; its old storage is reused
   memory.image.frame = motion.frame;
   memory.image.pose = motion.pose;

@@ -136,14 +136,8 @@ TEST(Clearing, ArrivalsLeaveWithTheirAttributesAcrossOriginMoves) {
     clock_moves += t > 0 && tree.time_origin() != time_origin ? 1 : 0;
     time_origin = tree.time_origin();
     ASSERT_EQ(tree.check_invariants(), "");
-    std::vector<HeldPoint> held = tree.points_with_attributes();
-    Oracle::sort_held(held);
-    const std::vector<HeldPoint> expected = oracle.points_with_attributes();
-    ASSERT_EQ(held.size(), expected.size());
-    for (std::size_t i = 0; i < held.size(); ++i) {
-      ASSERT_EQ(held[i].point, expected[i].point) << i;
-      ASSERT_EQ(held[i].attributes, expected[i].attributes) << "point " << expected[i].point.transpose();
-    }
+    expect_same_held_attributes(tree, oracle);
+    if (HasFatalFailure()) return;
   }
   EXPECT_GT(cleared, cleared_without + 100) << "no arrival was cleared";
   EXPECT_GE(rebases, 1) << "the precision origin never moved";

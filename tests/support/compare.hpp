@@ -91,6 +91,18 @@ void expect_same_world_answers(const Tree& tree, const Oracle& oracle, std::mt19
   }
 }
 
+/// Asserts that `tree` holds exactly the oracle's points, each with the oracle's attributes.
+inline void expect_same_held_attributes(const EgoOctree& tree, const Oracle& oracle) {
+  std::vector<HeldPoint> got = tree.points_with_attributes();
+  Oracle::sort_held(got);
+  const std::vector<HeldPoint> expected = oracle.points_with_attributes();
+  ASSERT_EQ(got.size(), expected.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    ASSERT_EQ(got[i].point, expected[i].point) << i;
+    ASSERT_EQ(got[i].attributes, expected[i].attributes) << "point " << expected[i].point.transpose();
+  }
+}
+
 /// Asserts an EgoOctree answers every query exactly as `oracle`, in the world and the ego frame.
 inline void expect_same_answers(const EgoOctree& tree, const Oracle& oracle, std::mt19937& rng,
                                 const std::string& where) {
