@@ -63,7 +63,8 @@ class Release {
   }
   void drop(std::uint32_t) {}  // never judged DropAll
   bool filter_leaf(std::uint32_t id) {
-    const auto [first, last] = std::equal_range(at_.begin(), at_.end(), id, ByLeaf{});
+    const auto leaf = std::equal_range(at_.begin(), at_.end(), id, ByLeaf{});
+    const auto first = leaf.first, last = leaf.second;  // not a structured binding: the lambda captures them
     const std::size_t before = released_;
     // each leaving point takes one held point equal to it (equal ones are interchangeable)
     t_.retain(id, [&](const StoredPoint& s) {
