@@ -9,10 +9,12 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 namespace eco::detail {
@@ -26,6 +28,16 @@ struct StoredPoint {
   float intensity = 0.0f;
   float time = 0.0f;
 };
+
+/// A new point of a store that keeps no column beside the coordinates (the robot's case):
+/// insertion moves 12 B a point instead of a StoredPoint's 28.
+struct BarePoint {
+  std::array<float, 3> p{};
+};
+
+/// A point to insert as the tree stores it (the columns a BarePoint lacks are not kept: zero).
+inline const StoredPoint& as_stored(const StoredPoint& s) { return s; }
+inline StoredPoint as_stored(const BarePoint& b) { return {b.p}; }
 
 /// The optional per-point columns of a PointStore.
 struct Columns {
@@ -58,8 +70,10 @@ class PointStore {
  public:
   explicit PointStore(Columns columns = {}) : columns_(columns) {}
 
-  /// Appends [first, last) to the block at `link` that holds `count` points (kNone: no block yet).
-  void append(std::uint32_t& link, std::uint32_t count, const StoredPoint* first, const StoredPoint* last) {
+  /// Appends [first, last) (StoredPoints, or BarePoints when no column is kept) to the block at
+  /// `link` that holds `count` points (kNone: no block yet).
+  template <class Point>
+  void append(std::uint32_t& link, std::uint32_t count, const Point* first, const Point* last) {
     const auto m = std::uint32_t(last - first);
     if (m == 0) return;
     reserve(link, count, count + m);
@@ -73,10 +87,15 @@ class PointStore {
       y[i] = first[i].p[1];
       z[i] = first[i].p[2];
     }
-    if (b.stamps) std::transform(first, last, b.stamps + count, [](const StoredPoint& s) { return s.stamp; });
-    if (b.ids) std::transform(first, last, b.ids + count, [](const StoredPoint& s) { return s.id; });
-    if (b.intensities) std::transform(first, last, b.intensities + count, [](const StoredPoint& s) { return s.intensity; });
-    if (b.times) std::transform(first, last, b.times + count, [](const StoredPoint& s) { return s.time; });
+    if constexpr (std::is_same_v<Point, StoredPoint>) {
+      if (b.stamps) std::transform(first, last, b.stamps + count, [](const StoredPoint& s) { return s.stamp; });
+      if (b.ids) std::transform(first, last, b.ids + count, [](const StoredPoint& s) { return s.id; });
+      if (b.intensities) std::transform(first, last, b.intensities + count, [](const StoredPoint& s) { return s.intensity; });
+      if (b.times) std::transform(first, last, b.times + count, [](const StoredPoint& s) { return s.time; });
+    } else {
+      static_assert(std::is_same_v<Point, BarePoint>);
+      assert(columns_.count() == 0);
+    }
   }
   void push(std::uint32_t& link, std::uint32_t count, const StoredPoint& s) { append(link, count, &s, &s + 1); }
 

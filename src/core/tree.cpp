@@ -182,9 +182,10 @@ void Tree::make_root() {
 // ---------------------------------------------------------------------------------------------
 // Insertion
 
-void Tree::insert_batch(std::vector<StoredPoint>& batch) {
+template <class Point>
+void Tree::insert_batch(std::vector<Point>& batch) {
   if (batch.empty()) return;
-  std::vector<StoredPoint>& temp = batch_buffers_.points;
+  std::vector<Point>& temp = batch_buffers_.of<Point>().points;
   temp.resize(batch.size());
   // Group the points by their start-depth cell (a counting sort), then insert each group below
   // its start node and add it to the ancestors once.
@@ -212,7 +213,7 @@ void Tree::insert_batch(std::vector<StoredPoint>& batch) {
   for (std::size_t b = 0; b + 1 < first.size(); ++b) {
     if (first[b] == first[b + 1]) continue;
     prefetch_start_node(b + 1, first);
-    StoredPoint* group = batch.data() + first[b];
+    Point* group = batch.data() + first[b];
     const std::uint32_t m = first[b + 1] - first[b];
     Cell cell = depth == 0 ? root_cell_ : lattice_.cell_at(depth, group->p);
     const std::uint32_t id = depth == 0 ? root_ : start_node(cell, cell);
@@ -252,15 +253,18 @@ void trim(std::vector<T>& buffer, std::size_t used) {
 }  // namespace
 
 void Tree::trim_buffers(std::size_t used) {
-  trim(batch_buffers_.scan, used);
-  trim(batch_buffers_.points, used);
+  std::apply([&](auto&... typed) { ((trim(typed.scan, used), trim(typed.points, used)), ...); },
+             batch_buffers_.by_type);
   trim(batch_buffers_.slot_of, used);
   trim(scratch_, used);
 }
 
 std::size_t Tree::buffer_bytes() const {
   const BatchBuffers& b = batch_buffers_;
-  return (scratch_.capacity() + b.scan.capacity() + b.points.capacity()) * sizeof(StoredPoint) +
+  const std::size_t batches = std::apply(
+      [](const auto&... typed) { return (((typed.scan.capacity() + typed.points.capacity()) * sizeof(typed.scan[0])) + ...); },
+      b.by_type);
+  return batches + scratch_.capacity() * sizeof(StoredPoint) +
          (b.slot_of.capacity() + b.group_start.capacity() + b.group_end.capacity()) * sizeof(std::uint32_t) +
          (clearing_memory_.image.storage.capacity() + clearing_memory_.before.storage.capacity() +
           clearing_memory_.pixel_tables.capacity()) *
@@ -285,17 +289,17 @@ std::uint32_t Tree::start_node(const Cell& cell, Cell& at) {
   return id;
 }
 
-Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, StoredPoint* to,
-                               StoredPoint* temp) {
+template <class Point>
+Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp) {
   const auto m = std::uint32_t(to - from);
   Added added;
   if (nodes_[id].leaf && (nodes_[id].count + m <= cfg_.leaf_capacity || cell.depth >= lattice_.max_depth)) {
     Node& n = nodes_[id];
     points_.append(n.link, n.count, from, to);
     n.count += m;
-    for (const StoredPoint* s = from; s != to; ++s) {
+    for (const Point* s = from; s != to; ++s) {
       added.bounds.grow(s->p[0], s->p[1], s->p[2]);
-      added.oldest = std::min(added.oldest, age_key(*s));
+      added.oldest = std::min(added.oldest, age_key(as_stored(*s)));
     }
     added.add_to(n);
     return added;
@@ -307,16 +311,16 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, StoredPoint* 
   const std::int64_t half = lattice_.side(cell.depth) / 2;
   const std::array<double, 3> wall{lattice_.wall(0, cell.lo[0] + half), lattice_.wall(1, cell.lo[1] + half),
                                    lattice_.wall(2, cell.lo[2] + half)};
-  auto octant = [&](const StoredPoint& s) {
+  auto octant = [&](const Point& s) {
     return int(double(s.p[0]) >= wall[0]) | int(double(s.p[1]) >= wall[1]) << 1 |
            int(double(s.p[2]) >= wall[2]) << 2;
   };
   std::array<std::uint32_t, 9> begin{};
-  for (const StoredPoint* s = from; s != to; ++s) ++begin[std::size_t(octant(*s)) + 1];
+  for (const Point* s = from; s != to; ++s) ++begin[std::size_t(octant(*s)) + 1];
   for (std::size_t o = 0; o < 8; ++o) begin[o + 1] += begin[o];
   std::array<std::uint32_t, 8> at{};
   std::copy(begin.begin(), begin.end() - 1, at.begin());
-  for (const StoredPoint* s = from; s != to; ++s) temp[at[std::size_t(octant(*s))]++] = *s;
+  for (const Point* s = from; s != to; ++s) temp[at[std::size_t(octant(*s))]++] = *s;
   for (int o = 0; o < 8; ++o) {
     const std::uint32_t lo = begin[std::size_t(o)], hi = begin[std::size_t(o) + 1];
     if (lo == hi) continue;
@@ -498,5 +502,8 @@ void Tree::rebuild_start_table(int depth) {
   };
   walk(walk, root_, root_cell_);
 }
+
+template void Tree::insert_batch(std::vector<StoredPoint>&);
+template void Tree::insert_batch(std::vector<BarePoint>&);
 
 }  // namespace eco::detail

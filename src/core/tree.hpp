@@ -19,6 +19,7 @@
 #include <bit>
 #include <cstdint>
 #include <optional>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -109,15 +110,17 @@ class Tree {
   // --- insertion --------------------------------------------------------------------------------
   /// Inserts every point of `batch` (each in the root cell), reordering it: the points are
   /// partitioned by octant top-down from the start table's depth, so each node on their way
-  /// is visited once per batch, not once per point.
-  void insert_batch(std::vector<StoredPoint>& batch);
-  /// Inserts the new points `collect(push)` hands to push(const StoredPoint&), in batches of at
-  /// most kInsertChunk through buffers the tree keeps: no frame pays for fresh pages, and the
-  /// buffers stay small however many points a frame brings. Each batch is shown to
-  /// `look(const std::vector<StoredPoint>&)` before it goes in. Returns how many.
-  template <class Collect, class Look>
+  /// is visited once per batch, not once per point. Point: StoredPoint, or BarePoint when the
+  /// store keeps no column.
+  template <class Point>
+  void insert_batch(std::vector<Point>& batch);
+  /// Inserts the new points `collect(push)` hands to push(const Point&), in batches of at most
+  /// kInsertChunk through buffers the tree keeps: no frame pays for fresh pages, and the buffers
+  /// stay small however many points a frame brings. Each batch is shown to
+  /// `look(const std::vector<Point>&)` before it goes in. Returns how many.
+  template <class Point, class Collect, class Look>
   std::size_t insert_collected(Collect&& collect, Look&& look) {
-    std::vector<StoredPoint>& batch = batch_buffers_.scan;
+    std::vector<Point>& batch = batch_buffers_.of<Point>().scan;
     std::size_t n = 0;
     const auto insert = [&] {
       n += batch.size();
@@ -126,7 +129,7 @@ class Tree {
       batch.clear();
     };
     batch.clear();
-    collect([&](const StoredPoint& s) {
+    collect([&](const Point& s) {
       batch.push_back(s);
       if (batch.size() == kInsertChunk) insert();
     });
@@ -135,8 +138,8 @@ class Tree {
     return n;
   }
   /// Points per batch of insert_collected: large enough that a batch shares the walk down to most
-  /// start nodes, small enough that its buffers (two copies, 28 B a point each) stay under 2 MB.
-  static constexpr std::size_t kInsertChunk = std::size_t(1) << 15;
+  /// start nodes, small enough that its two copies (12 or 28 B a point each) stay near the cache.
+  static constexpr std::size_t kInsertChunk = std::size_t(1) << 14;
   /// The density cap's verdicts on new points[0, n) (n <= kDensityGroup), in their order:
   /// passed[i] = 1 when point i's cell holds fewer points than the cap (it is counted there;
   /// every point passes while the cap is off). Returns how many it refused.
@@ -246,7 +249,8 @@ class Tree {
   /// Inserts points [from, to), all inside `cell`, into the subtree at `id`, partitioning them
   /// into `temp` (room for as many; both ranges are overwritten); the caller adds them to the
   /// ancestors. Returns their bounds and oldest age key.
-  Added insert_range(std::uint32_t id, const Cell& cell, StoredPoint* from, StoredPoint* to, StoredPoint* temp);
+  template <class Point>
+  Added insert_range(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp);
   /// The node at the start depth holding `cell`'s points (created on the way), or the leaf above.
   std::uint32_t start_node(const Cell& cell, Cell& at);
   /// Prefetches the start node of the first non-empty group at or after `from` (groups of
@@ -273,9 +277,15 @@ class Tree {
   CellCounts density_;  // points per density-cap cell, kept while the cap is on
   WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
   std::vector<StoredPoint> scratch_;  // points of a leaf being split or a subtree collapsed
+  template <class Point>
+  struct PointBuffers {
+    std::vector<Point> scan, points;
+  };
   struct BatchBuffers {  // insert_batch's and insert_collected's, kept so that no frame pays for fresh pages
-    std::vector<StoredPoint> scan, points;
+    std::tuple<PointBuffers<StoredPoint>, PointBuffers<BarePoint>> by_type;
     std::vector<std::uint32_t> slot_of, group_start, group_end;
+    template <class Point>
+    PointBuffers<Point>& of() { return std::get<PointBuffers<Point>>(by_type); }
   } batch_buffers_;
   ClearingMemory clearing_memory_;
 };

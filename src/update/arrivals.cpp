@@ -16,9 +16,10 @@ ArrivalCheck::ArrivalCheck(Tree& tree, const Motion& motion, const Tree::KeptIma
              SeenThrough(RangeImage(pixels_, before.storage), tree.config().clearing.margin)},
       leaving_(tree.clearing_memory().leaving) {}
 
-void ArrivalCheck::operator()(const std::vector<StoredPoint>& batch) {
+template <class Point>
+void ArrivalCheck::operator()(const std::vector<Point>& batch) {
   const auto take = [&](std::uint32_t tag, std::uint32_t pixel, double squared_range) {
-    if (judge_.seen_through(pixel, squared_range)) leaving_.push_back(batch[tag]);
+    if (judge_.seen_through(pixel, squared_range)) leaving_.push_back(as_stored(batch[tag]));
   };
   PixelStream<decltype(take), PixelLookup::Reach::SquaredRange> stream(pixels_, take);
   Sink sink(judge_.sight.pose(), stream);
@@ -27,6 +28,9 @@ void ArrivalCheck::operator()(const std::vector<StoredPoint>& batch) {
   }
   sink.flush();
 }
+
+template void ArrivalCheck::operator()(const std::vector<StoredPoint>&);
+template void ArrivalCheck::operator()(const std::vector<BarePoint>&);
 
 namespace {
 

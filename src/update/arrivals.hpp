@@ -18,8 +18,9 @@ class ArrivalCheck {
  public:
   /// `before`: the last update's scan, kept by `tree`; `motion`: this update's.
   ArrivalCheck(Tree& tree, const Motion& motion, const Tree::KeptImage& before);
-  /// Judges `batch`, new points about to be inserted.
-  void operator()(const std::vector<StoredPoint>& batch);
+  /// Judges `batch`, new points about to be inserted (StoredPoints or BarePoints).
+  template <class Point>
+  void operator()(const std::vector<Point>& batch);
 
  private:
   PixelLookup pixels_;

@@ -44,11 +44,11 @@ namespace {
 
 /// Takes out of `group` the points older than the age limit already (their times), keeping the
 /// others' order; returns how many.
-template <class Stored>
-std::size_t drop_aged(const Tree& tree, AdmittedGroup& group, const Stored& stored) {
+template <class Make>
+std::size_t drop_aged(const Tree& tree, AdmittedGroup& group, const Make& make) {
   std::size_t kept = 0;
   for (std::size_t j = 0; j < group.size; ++j) {
-    if (tree.age_key(stored(group.points[j], group.index[j])) < tree.age_cutoff()) continue;
+    if (tree.age_key(as_stored(make(group.points[j], group.index[j]))) < tree.age_cutoff()) continue;
     group.points[kept] = group.points[j];
     group.index[kept] = group.index[j];
     ++kept;
@@ -58,34 +58,47 @@ std::size_t drop_aged(const Tree& tree, AdmittedGroup& group, const Stored& stor
   return dropped;
 }
 
-}  // namespace
-
-void insert_scan(Tree& tree, const Motion& motion, ScanView scan, const Tree::KeptImage* before,
-                 UpdateStats& stats) {
+/// Inserts the scan points the policy admits and the density cap passes, each as
+/// make(stored coordinates, scan index) makes it; returns how many.
+template <class Make>
+std::size_t take_in(Tree& tree, const Motion& motion, ScanView scan, const Tree::KeptImage* before,
+                    UpdateStats& stats, const Make& make) {
   static_assert(kAdmitGroup <= kDensityGroup, "an admitted group is judged whole");
-  const Columns& kept = tree.points().columns();
-  const std::uint32_t stamp = kept.stamps ? motion.frame : 0;
+  using Point = decltype(make(std::array<float, 3>{}, std::uint32_t{}));
   const bool timed_age = tree.config().max_age_seconds > 0.0;
-  const auto stored = [&](const std::array<float, 3>& p, std::uint32_t i) {
-    return StoredPoint{p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
-                       kept.times ? float(scan.times[i] - motion.clock.origin) : 0.0f};
-  };
   std::optional<ArrivalCheck> arrivals;
   if (before != nullptr) arrivals.emplace(tree, motion, *before);
-  const auto check = [&](const std::vector<StoredPoint>& batch) {
+  const auto check = [&](const std::vector<Point>& batch) {
     if (arrivals) (*arrivals)(batch);
   };
-  stats.inserted = tree.insert_collected([&](auto&& insert) {
+  return tree.insert_collected<Point>([&](auto&& insert) {
     admission(motion, tree.config().insert_policy).for_each_group(scan, stats, [&](AdmittedGroup& group) {
-      if (timed_age) stats.skipped_by_age += drop_aged(tree, group, stored);
+      if (timed_age) stats.skipped_by_age += drop_aged(tree, group, make);
       // in scan order: the first points to reach a full cell are the ones kept
       std::array<std::uint8_t, kAdmitGroup> passed;
       stats.skipped_by_density += tree.judge_density(group.points.data(), group.size, passed.data());
       for (std::size_t j = 0; j < group.size; ++j) {
-        if (passed[j] != 0) insert(stored(group.points[j], group.index[j]));
+        if (passed[j] != 0) insert(make(group.points[j], group.index[j]));
       }
     });
   }, check);
+}
+
+}  // namespace
+
+void insert_scan(Tree& tree, const Motion& motion, ScanView scan, const Tree::KeptImage* before,
+                 UpdateStats& stats) {
+  const Columns& kept = tree.points().columns();
+  if (kept.count() == 0) {  // coordinates alone: the batches move less than half the bytes
+    stats.inserted = take_in(tree, motion, scan, before, stats,
+                             [](const std::array<float, 3>& p, std::uint32_t) { return BarePoint{p}; });
+    return;
+  }
+  const std::uint32_t stamp = kept.stamps ? motion.frame : 0;
+  stats.inserted = take_in(tree, motion, scan, before, stats, [&](const std::array<float, 3>& p, std::uint32_t i) {
+    return StoredPoint{p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
+                       kept.times ? float(scan.times[i] - motion.clock.origin) : 0.0f};
+  });
 }
 
 }  // namespace eco::detail
