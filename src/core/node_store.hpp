@@ -99,6 +99,9 @@ class NodeStore {
       free.pop_back();
       return id;
     }
+    // grow by half, not double: a map's nodes come to rest near their peak, and the vector's
+    // spare room is memory held for nothing
+    if (pool.size() == pool.capacity()) pool.reserve(pool.capacity() + pool.capacity() / 2 + 64);
     pool.emplace_back();
     return static_cast<std::uint32_t>(pool.size() - 1);
   }
