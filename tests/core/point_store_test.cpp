@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -31,11 +32,18 @@ bool same(const std::vector<StoredPoint>& a, const std::vector<StoredPoint>& b) 
   return true;
 }
 
-TEST(PointStore, SizeClassesGrowByAboutHalfAndTheSmallestFitIsChosen) {
-  for (int c = 1; c < 40; ++c) {
+TEST(PointStore, SizeClassesGrowByAFifthToAThirdAndTheSmallestFitIsChosen) {
+  constexpr int kClasses = 64;  // a link's six class bits
+  for (int c = 1; c < kClasses; ++c) {
     EXPECT_GT(PointStore::capacity_of(c), PointStore::capacity_of(c - 1));
-    EXPECT_LE(PointStore::capacity_of(c), 2 * PointStore::capacity_of(c - 1));
+    if (PointStore::capacity_of(c - 1) >= 4) {  // 2, 3, 4: the first steps are a point each
+      EXPECT_LE(3 * PointStore::capacity_of(c), 4 * PointStore::capacity_of(c - 1)) << "class " << c;
+      EXPECT_GE(5 * PointStore::capacity_of(c), 6 * PointStore::capacity_of(c - 1)) << "class " << c;
+    }
   }
+  const std::uint32_t largest = PointStore::capacity_of(kClasses - 1);
+  EXPECT_EQ(PointStore::class_for(largest), kClasses - 1);
+  EXPECT_THROW((void)PointStore::class_for(largest + 1), std::length_error);
   for (std::uint32_t n = 1; n < 5000; ++n) {
     const int c = PointStore::class_for(n);
     ASSERT_GE(PointStore::capacity_of(c), n);
