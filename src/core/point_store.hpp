@@ -163,10 +163,10 @@ class PointStore {
   }
 
   /// Points a block of size class c holds: 2, 3, 4, 5, 6, 8, 10, 12, 16, 20, 24, 32, ... (steps
-  /// of 1.2-1.33x: a leaf's block is ~90 % full on average).
+  /// of 1.2-1.33x up to 4096, so a leaf's block is ~90 % full on average; then 2x).
   static std::uint32_t capacity_of(int c) { return kCapacities[std::size_t(c)]; }
   /// The smallest size class that holds n points.
-  static int class_for(std::uint32_t n) {
+  static int class_for(std::uint32_t n) {  // n > 2^31 is refused
     if (n > kCapacities.back()) throw std::length_error("eco: too many points in one leaf");
     int c = 0;
     while (capacity_of(c) < n) ++c;
@@ -175,12 +175,17 @@ class PointStore {
 
  private:
   static constexpr int kIndexBits = 26;  // a link: size class above, block index below
-  static constexpr std::size_t kClasses = std::size_t{1} << (32 - kIndexBits);
+  // 2, 3, 4, 5, 6, then 8, 10, 12 times each power of two up to 4096 (a leaf at most ~10 % empty
+  // on average), then doubling to 2^31 (leaves that large are points stacked at the maximum depth)
+  static constexpr std::size_t kClasses = 52;
   static constexpr std::array<std::uint32_t, kClasses> kCapacities = [] {
     std::array<std::uint32_t, kClasses> caps{2, 3, 4, 5, 6};
-    for (std::size_t c = 5; c < kClasses; ++c) caps[c] = std::uint32_t(8 + 2 * ((c - 5) % 3)) << ((c - 5) / 3);
+    for (std::size_t c = 5; c <= 32; ++c) caps[c] = std::uint32_t(8 + 2 * ((c - 5) % 3)) << ((c - 5) / 3);
+    for (std::size_t c = 33; c < kClasses; ++c) caps[c] = 2 * caps[c - 1];
     return caps;
   }();
+  static_assert(kClasses <= std::size_t{1} << (32 - kIndexBits));
+
   static constexpr std::uint32_t kIndexMask = (std::uint32_t{1} << kIndexBits) - 1;
   static constexpr std::size_t kPageBytes = std::size_t{1} << 12;  // small: a sparse map pays little per size class
 

@@ -32,17 +32,20 @@ bool same(const std::vector<StoredPoint>& a, const std::vector<StoredPoint>& b) 
   return true;
 }
 
-TEST(PointStore, SizeClassesGrowByAFifthToAThirdAndTheSmallestFitIsChosen) {
-  constexpr int kClasses = 64;  // a link's six class bits
-  for (int c = 1; c < kClasses; ++c) {
-    EXPECT_GT(PointStore::capacity_of(c), PointStore::capacity_of(c - 1));
-    if (PointStore::capacity_of(c - 1) >= 4) {  // 2, 3, 4: the first steps are a point each
-      EXPECT_LE(3 * PointStore::capacity_of(c), 4 * PointStore::capacity_of(c - 1)) << "class " << c;
-      EXPECT_GE(5 * PointStore::capacity_of(c), 6 * PointStore::capacity_of(c - 1)) << "class " << c;
+TEST(PointStore, SizeClassesGrowByAFifthToAThirdThenDoubleAndTheSmallestFitIsChosen) {
+  for (int c = 1; PointStore::capacity_of(c - 1) < (1u << 31); ++c) {
+    const std::uint32_t before = PointStore::capacity_of(c - 1), now = PointStore::capacity_of(c);
+    if (before < 4) {  // 2, 3, 4: a point a step
+      EXPECT_EQ(now, before + 1);
+    } else if (before < 4096) {
+      EXPECT_LE(3 * now, 4 * before) << "class " << c;
+      EXPECT_GE(5 * now, 6 * before) << "class " << c;
+    } else {
+      EXPECT_EQ(now, 2 * before) << "class " << c;
     }
   }
-  const std::uint32_t largest = PointStore::capacity_of(kClasses - 1);
-  EXPECT_EQ(PointStore::class_for(largest), kClasses - 1);
+  const std::uint32_t largest = 1u << 31;
+  EXPECT_EQ(PointStore::capacity_of(PointStore::class_for(largest)), largest);
   EXPECT_THROW((void)PointStore::class_for(largest + 1), std::length_error);
   for (std::uint32_t n = 1; n < 5000; ++n) {
     const int c = PointStore::class_for(n);
