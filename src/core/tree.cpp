@@ -204,10 +204,11 @@ void Tree::insert_batch(std::vector<Point>& batch) {
       slot_of[i] = std::uint32_t(slot);
       ++first[std::size_t(slot) + 1];
     }
-    for (std::size_t b = 0; b + 1 < first.size(); ++b) first[b + 1] += first[b];
-    std::vector<std::uint32_t>& at = batch_buffers_.group_end;
-    at.assign(first.begin(), first.end() - 1);
-    for (std::size_t i = 0; i < batch.size(); ++i) temp[at[slot_of[i]]++] = batch[i];
+    // first[s + 1] becomes where group s starts, then where it ends as the points go in: at the
+    // end first[s] is where group s starts (no second array of positions)
+    std::uint32_t start = 0;
+    for (std::size_t b = 1; b < first.size(); ++b) start += std::exchange(first[b], start);
+    for (std::size_t i = 0; i < batch.size(); ++i) temp[first[std::size_t(slot_of[i]) + 1]++] = batch[i];
     batch.swap(temp);
   }
   for (std::size_t b = 0; b + 1 < first.size(); ++b) {
@@ -265,7 +266,7 @@ std::size_t Tree::buffer_bytes() const {
       [](const auto&... typed) { return (((typed.scan.capacity() + typed.points.capacity()) * sizeof(typed.scan[0])) + ...); },
       b.by_type);
   return batches + scratch_.capacity() * sizeof(StoredPoint) +
-         (b.slot_of.capacity() + b.group_start.capacity() + b.group_end.capacity()) * sizeof(std::uint32_t) +
+         (b.slot_of.capacity() + b.group_start.capacity()) * sizeof(std::uint32_t) +
          (clearing_memory_.image.storage.capacity() + clearing_memory_.before.storage.capacity() +
           clearing_memory_.pixel_tables.capacity()) *
              sizeof(double) +

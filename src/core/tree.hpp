@@ -283,7 +283,7 @@ class Tree {
   };
   struct BatchBuffers {  // insert_batch's and insert_collected's, kept so that no frame pays for fresh pages
     std::tuple<PointBuffers<StoredPoint>, PointBuffers<BarePoint>> by_type;
-    std::vector<std::uint32_t> slot_of, group_start, group_end;
+    std::vector<std::uint32_t> slot_of, group_start;
     template <class Point>
     PointBuffers<Point>& of() { return std::get<PointBuffers<Point>>(by_type); }
   } batch_buffers_;
