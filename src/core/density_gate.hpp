@@ -16,6 +16,7 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 namespace eco::detail {
 
@@ -54,6 +55,24 @@ inline std::size_t judge_group(CellCounts& counts, const WorldGrid& grid, std::u
   std::size_t taken = 0;
   for (std::size_t i = 0; i < n; ++i) taken += passed[i];
   return n - taken;
+}
+
+/// Calls take(i) for each i < n whose verdict passed[i] passed, in order: eight verdicts a word,
+/// since under a cap most words refuse all eight.
+template <class Take>
+void for_each_passed(const std::uint8_t* passed, std::size_t n, Take&& take) {
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    std::uint64_t eight;
+    std::memcpy(&eight, passed + i, sizeof eight);
+    if (eight == 0) continue;
+    for (std::size_t j = i; j < i + 8; ++j) {
+      if (passed[j] != 0) take(j);
+    }
+  }
+  for (; i < n; ++i) {
+    if (passed[i] != 0) take(i);
+  }
 }
 
 /// judge_group under `cap`; while the cap is off every point passes, counted nowhere.

@@ -262,9 +262,7 @@ void Tree::trim_buffers(std::size_t used) {
 
 std::size_t Tree::buffer_bytes() const {
   const BatchBuffers& b = batch_buffers_;
-  const std::size_t batches = std::apply(
-      [](const auto&... typed) { return (((typed.scan.capacity() + typed.points.capacity()) * sizeof(typed.scan[0])) + ...); },
-      b.by_type);
+  const std::size_t batches = std::apply([](const auto&... typed) { return (typed.bytes() + ...); }, b.by_type);
   return batches + scratch_.capacity() * sizeof(StoredPoint) +
          (b.slot_of.capacity() + b.group_start.capacity()) * sizeof(std::uint32_t) +
          (clearing_memory_.image.storage.capacity() + clearing_memory_.before.storage.capacity() +

@@ -280,6 +280,7 @@ class Tree {
   template <class Point>
   struct PointBuffers {
     std::vector<Point> scan, points;
+    [[nodiscard]] std::size_t bytes() const { return (scan.capacity() + points.capacity()) * sizeof(Point); }
   };
   struct BatchBuffers {  // insert_batch's and insert_collected's, kept so that no frame pays for fresh pages
     std::tuple<PointBuffers<StoredPoint>, PointBuffers<BarePoint>> by_type;

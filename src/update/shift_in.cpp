@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <optional>
 
 namespace eco::detail {
@@ -78,15 +77,7 @@ std::size_t take_in(Tree& tree, const Motion& motion, ScanView scan, const Tree:
       // in scan order: the first points to reach a full cell are the ones kept
       std::array<std::uint8_t, kAdmitGroup> passed;
       stats.skipped_by_density += tree.judge_density(group.points.data(), group.size, passed.data());
-      // eight verdicts a word: under a cap most words refuse all eight
-      for (std::size_t w = 0; w < group.size; w += 8) {
-        std::uint64_t eight;
-        std::memcpy(&eight, passed.data() + w, sizeof eight);  // bytes past group.size: read, never used
-        if (eight == 0) continue;
-        for (std::size_t j = w; j < std::min(w + 8, group.size); ++j) {
-          if (passed[j] != 0) insert(make(group.points[j], group.index[j]));
-        }
-      }
+      for_each_passed(passed.data(), group.size, [&](std::size_t j) { insert(make(group.points[j], group.index[j])); });
     });
   }, check);
 }

@@ -198,6 +198,22 @@ TEST(DensityGate, EveryPointPassesWhileTheCapIsOff) {
   EXPECT_EQ(counts.count(CellCounts::key(grid.index(points[0]))), 2u);
 }
 
+TEST(DensityGate, WalksThePassedVerdictsInOrderAndNothingBeyondThem) {
+  std::mt19937 rng(5);
+  for (std::size_t n = 0; n <= kDensityGroup; ++n) {
+    for (int density = 0; density <= 4; ++density) {  // none passed, then sparser to all passed
+      std::vector<std::uint8_t> passed(kDensityGroup, 1);  // past n: set, and never to be walked
+      for (std::size_t i = 0; i < n; ++i) passed[i] = std::uint8_t(int(rng() % 4) < density);
+      std::vector<std::size_t> expected, got;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (passed[i] != 0) expected.push_back(i);
+      }
+      for_each_passed(passed.data(), n, [&](std::size_t i) { got.push_back(i); });
+      EXPECT_EQ(got, expected) << n << " verdicts, density " << density;
+    }
+  }
+}
+
 TEST(DensityGate, ForgetsInGroupsWhatLeavesOnePointAtATime) {
   const WorldGrid grid({-4.0, 7.5, 0.25}, 0.2);
   std::mt19937 rng(5);
