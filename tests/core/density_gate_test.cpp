@@ -147,11 +147,20 @@ TEST(DensityGate, JudgesGroupsAsTheRuleJudgesOnePointAfterAnother) {
   const WorldGrid grid({12.5, -3.25, 0.75}, 0.2);
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);  // ~10 cells an axis: cells fill up
+  std::uniform_real_distribution<float> step(-0.03f, 0.03f);
   for (const std::size_t n : {std::size_t{0}, std::size_t{1}, kDensityGroup - 1, kDensityGroup,
                               kDensityGroup + 1, 5 * kDensityGroup + 7}) {
     for (const std::uint32_t limit : {0u, 1u, 3u}) {
       std::vector<std::array<float, 3>> stream;
-      for (std::size_t i = 0; i < n; ++i) stream.push_back({coordinate(rng), coordinate(rng), coordinate(rng)});
+      for (std::size_t i = 0; i < n; ++i) {
+        // scattered, and in walks of small steps as a scan meets its cells: runs of one cell
+        if (i > 0 && rng() % 8 != 0) {
+          const std::array<float, 3>& p = stream.back();
+          stream.push_back({p[0] + step(rng), p[1] + step(rng), p[2] + step(rng)});
+        } else {
+          stream.push_back({coordinate(rng), coordinate(rng), coordinate(rng)});
+        }
+      }
       // some cells hold points already: the first few of the stream, counted beforehand
       CellCounts counts;
       std::map<std::uint64_t, std::uint32_t> expected;
