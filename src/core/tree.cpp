@@ -314,12 +314,27 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
     return int(double(s.p[0]) >= wall[0]) | int(double(s.p[1]) >= wall[1]) << 1 |
            int(double(s.p[2]) >= wall[2]) << 2;
   };
+  // the range's two halves counted and scattered side by side, each with its own cursors: two
+  // chains of increments, not one (a scan's points come in runs of one octant)
+  const std::uint32_t h = m / 2;
+  std::array<std::uint32_t, 8> first_half{}, second_half{};
+  for (std::uint32_t i = 0; i < h; ++i) {
+    ++first_half[std::size_t(octant(from[i]))];
+    ++second_half[std::size_t(octant(from[h + i]))];
+  }
+  if (m % 2 != 0) ++second_half[std::size_t(octant(from[m - 1]))];
   std::array<std::uint32_t, 9> begin{};
-  for (const Point* s = from; s != to; ++s) ++begin[std::size_t(octant(*s)) + 1];
-  for (std::size_t o = 0; o < 8; ++o) begin[o + 1] += begin[o];
-  std::array<std::uint32_t, 8> at{};
-  std::copy(begin.begin(), begin.end() - 1, at.begin());
-  for (const Point* s = from; s != to; ++s) temp[at[std::size_t(octant(*s))]++] = *s;
+  std::array<std::uint32_t, 8> at{}, at2{};
+  for (std::size_t o = 0; o < 8; ++o) {
+    at[o] = begin[o];
+    at2[o] = begin[o] + first_half[o];
+    begin[o + 1] = at2[o] + second_half[o];
+  }
+  for (std::uint32_t i = 0; i < h; ++i) {
+    temp[at[std::size_t(octant(from[i]))]++] = from[i];
+    temp[at2[std::size_t(octant(from[h + i]))]++] = from[h + i];
+  }
+  if (m % 2 != 0) temp[at2[std::size_t(octant(from[m - 1]))]++] = from[m - 1];
   for (int o = 0; o < 8; ++o) {
     const std::uint32_t lo = begin[std::size_t(o)], hi = begin[std::size_t(o) + 1];
     if (lo == hi) continue;
