@@ -187,16 +187,19 @@ void Tree::insert_batch(std::vector<Point>& batch) {
   if (batch.empty()) return;
   std::vector<Point>& temp = batch_buffers_.of<Point>().points;
   temp.resize(batch.size());
+  std::vector<std::uint32_t>& slot_of = batch_buffers_.slot_of;  // the groups' sorts' second array, once grouped
+  std::vector<std::uint32_t>& codes = batch_buffers_.codes;
+  slot_of.resize(batch.size());
+  codes.resize(batch.size());
   // Group the points by their start-depth cell (a counting sort), then insert each group below
-  // its start node and add it to the ancestors once.
+  // its start node (a large group sorted by the cells below it: insert_sorted) and add it to the
+  // ancestors once.
   const int depth = start_.depth;
   std::vector<std::uint32_t>& first = batch_buffers_.group_start;
   first.assign((depth == 0 ? 1 : start_.slots.size()) + 1, 0);
   if (depth == 0) {
     first[1] = std::uint32_t(batch.size());
   } else {
-    std::vector<std::uint32_t>& slot_of = batch_buffers_.slot_of;
-    slot_of.resize(batch.size());
     const WorldGrid cells = lattice_.grid(depth);
     for (std::size_t i = 0; i < batch.size(); ++i) {
       const std::int64_t slot = start_slot(lattice_.cell_of(depth, cells.index(batch[i].p)));
@@ -218,7 +221,12 @@ void Tree::insert_batch(std::vector<Point>& batch) {
     const std::uint32_t m = first[b + 1] - first[b];
     Cell cell = depth == 0 ? root_cell_ : lattice_.cell_at(depth, group->p);
     const std::uint32_t id = depth == 0 ? root_ : start_node(cell, cell);
-    insert_range(id, cell, group, group + m, temp.data() + first[b]);
+    if (m >= kSortedGroup) {
+      insert_sorted(id, cell, group, group + m, temp.data() + first[b], codes.data() + first[b],
+                    slot_of.data() + first[b]);
+    } else {
+      insert_range(id, cell, group, group + m, temp.data() + first[b]);
+    }
     const Node& top = nodes_[id];
     for (std::uint32_t up = top.parent; up != kNone; up = nodes_[up].parent) {
       Node& n = nodes_[up];
@@ -257,6 +265,7 @@ void Tree::trim_buffers(std::size_t used) {
   std::apply([&](auto&... typed) { ((trim(typed.scan, used), trim(typed.points, used)), ...); },
              batch_buffers_.by_type);
   trim(batch_buffers_.slot_of, used);
+  trim(batch_buffers_.codes, used);
   trim(scratch_, used);
 }
 
@@ -264,7 +273,7 @@ std::size_t Tree::buffer_bytes() const {
   const BatchBuffers& b = batch_buffers_;
   const std::size_t batches = std::apply([](const auto&... typed) { return (typed.bytes() + ...); }, b.by_type);
   return batches + scratch_.capacity() * sizeof(StoredPoint) +
-         (b.slot_of.capacity() + b.group_start.capacity()) * sizeof(std::uint32_t) +
+         (b.slot_of.capacity() + b.codes.capacity() + b.group_start.capacity()) * sizeof(std::uint32_t) +
          (clearing_memory_.image.storage.capacity() + clearing_memory_.before.storage.capacity() +
           clearing_memory_.pixel_tables.capacity()) *
              sizeof(double) +

@@ -140,6 +140,7 @@ class Tree {
   /// Points per batch of insert_collected: large enough that a batch shares the walk down to most
   /// start nodes, small enough that its two copies (12 or 28 B a point each) stay near the cache.
   static constexpr std::size_t kInsertChunk = std::size_t(1) << 14;
+  static constexpr std::uint32_t kSortedGroup = 64;  // points below one start node worth sorting (insert_sorted)
   /// The density cap's verdicts on new points[0, n) (n <= kDensityGroup), in their order:
   /// passed[i] = 1 when point i's cell holds fewer points than the cap (it is counted there;
   /// every point passes while the cap is off). Returns how many it refused.
@@ -251,6 +252,16 @@ class Tree {
   /// ancestors. Returns their bounds and oldest age key.
   template <class Point>
   Added insert_range(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp);
+  /// insert_range for many points (src/core/sorted_insert.cpp): sorted by the cells they fall in
+  /// a few levels down, found at once, so that those levels read their children's ranges instead
+  /// of partitioning them. `codes` and `codes_temp` have room for as many points.
+  template <class Point>
+  Added insert_sorted(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp, std::uint32_t* codes,
+                      std::uint32_t* codes_temp);
+  /// insert_sorted's descent: points [from, to) sorted by `codes`, `level` levels below the sort's node.
+  template <class Point>
+  Added descend_sorted(std::uint32_t id, const Cell& cell, int level, Point* from, Point* to, Point* temp,
+                       const std::uint32_t* codes);
   /// The node at the start depth holding `cell`'s points (created on the way), or the leaf above.
   std::uint32_t start_node(const Cell& cell, Cell& at);
   /// Prefetches the start node of the first non-empty group at or after `from` (groups of
@@ -284,7 +295,7 @@ class Tree {
   };
   struct BatchBuffers {  // insert_batch's and insert_collected's, kept so that no frame pays for fresh pages
     std::tuple<PointBuffers<StoredPoint>, PointBuffers<BarePoint>> by_type;
-    std::vector<std::uint32_t> slot_of, group_start;
+    std::vector<std::uint32_t> slot_of, group_start, codes;
     template <class Point>
     PointBuffers<Point>& of() { return std::get<PointBuffers<Point>>(by_type); }
   } batch_buffers_;

@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -108,6 +110,48 @@ TEST_F(TreeOpsTest, GrowingTheRootKeepsEveryPointAndDeepensTheLattice) {
     EXPECT_EQ(tree_->nodes().child(tree_->root(), octant) != kNone, true);
     EXPECT_EQ(check_tree(*tree_), "") << "after growing toward octant " << octant;
     EXPECT_EQ(held(), inserted_);
+  }
+}
+
+TEST_F(TreeOpsTest, PointsOnTheLatticesWallsGoWhereTheirOctantsLead) {
+  // Batches large enough to be sorted by their cells (Tree::insert_sorted), most of their points
+  // on a wall of the finest cells or the float below one, where the cells' guesses are unsure and
+  // the walls decide; in clusters, so that start nodes receive hundreds of points at once.
+  for (const std::uint32_t leaf_capacity : {4u, 32u}) {
+    Config config;
+    config.leaf_capacity = leaf_capacity;
+    fill(config, 0);
+    const Lattice& lattice = tree_->lattice();
+    const Cell root = tree_->root_cell();
+    const Box box = tree_->motion()->box;
+    std::mt19937 rng(leaf_capacity);
+    std::uniform_int_distribution<std::int64_t> cluster(0, lattice.side(0) - 1), near(-40, 40);
+    std::vector<StoredPoint> batch;
+    for (int c = 0; c < 40; ++c) {
+      std::array<std::int64_t, 3> centre{};
+      for (std::size_t a = 0; a < 3; ++a) centre[a] = root.lo[a] + cluster(rng);
+      for (int i = 0; i < 300; ++i) {
+        StoredPoint s{};
+        for (std::size_t a = 0; a < 3; ++a) {
+          const double wall = lattice.wall(int(a), centre[a] + near(rng));
+          float f = float(wall);
+          if (double(f) < wall) f = std::nextafter(f, std::numeric_limits<float>::infinity());  // on the wall
+          const int choice = int(rng() % 3);
+          if (choice == 1) f = std::nextafter(f, -std::numeric_limits<float>::infinity());  // just below it
+          if (choice == 2) f = float(wall + 0.3 * lattice.unit);  // inside a cell
+          s.p[a] = f;
+        }
+        if (box.contains(s.p[0], s.p[1], s.p[2])) batch.push_back(s);
+      }
+    }
+    std::vector<StoredPoint> copy = batch;
+    tree_->insert_batch(copy);
+    Points want;
+    for (const StoredPoint& s : batch) want.push_back(s.p);
+    std::sort(want.begin(), want.end());
+    EXPECT_GT(want.size(), 5000u);
+    EXPECT_EQ(held(), want) << "leaf capacity " << leaf_capacity;
+    EXPECT_EQ(check_tree(*tree_), "") << "leaf capacity " << leaf_capacity;
   }
 }
 

@@ -1,0 +1,111 @@
+// Insertion of a large group of points below one node, by sorting instead of partitioning: the
+// cell each point falls in a few levels down is found once (src/core/cell_codes.hpp), the points
+// are sorted by the cells' Morton codes, and each of those levels reads its children's ranges off
+// the codes instead of moving every point into them (insert_range's counting sort per level).
+
+#include "core/cell_codes.hpp"
+#include "core/tree.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <utility>
+
+namespace eco::detail {
+namespace {
+
+constexpr int kDigitBits = 9;  // codes of 3 kCodeLevels = 18 bits, sorted in two passes
+constexpr std::uint32_t kDigits = 1u << kDigitBits;
+static_assert(2 * kDigitBits == 3 * kCodeLevels);
+
+/// One pass of a least-significant-digit radix sort: points and codes into the `_out` arrays,
+/// stably by the digit of the codes at `shift`.
+template <class Point>
+void sort_pass(const Point* points, const std::uint32_t* codes, std::uint32_t m, int shift, Point* points_out,
+               std::uint32_t* codes_out) {
+  std::array<std::uint32_t, kDigits> at{};
+  for (std::uint32_t i = 0; i < m; ++i) ++at[(codes[i] >> shift) & (kDigits - 1)];
+  std::uint32_t start = 0;
+  for (std::uint32_t& a : at) start += std::exchange(a, start);
+  for (std::uint32_t i = 0; i < m; ++i) {
+    const std::uint32_t to = at[(codes[i] >> shift) & (kDigits - 1)]++;
+    points_out[to] = points[i];
+    codes_out[to] = codes[i];
+  }
+}
+
+}  // namespace
+
+template <class Point>
+Tree::Added Tree::insert_sorted(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp,
+                                std::uint32_t* codes, std::uint32_t* codes_temp) {
+  const auto m = std::uint32_t(to - from);
+  const int levels = std::min(kCodeLevels, lattice_.max_depth - cell.depth);
+  const std::int64_t step = lattice_.side(cell.depth + levels);  // the coded cells' side, in lattice units
+  CodeGrid grid;
+  grid.cells = 1u << levels;
+  grid.shift = 3 * (kCodeLevels - levels);  // the first level in the top bits, however many are coded
+  double farthest = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    grid.low[std::size_t(a)] = lattice_.wall(a, cell.lo[a]);
+    grid.inverse[std::size_t(a)] = 1.0 / (double(step) * lattice_.unit);
+    farthest = std::max({farthest, std::abs(grid.low[std::size_t(a)]),
+                         std::abs(lattice_.wall(a, cell.lo[a] + lattice_.side(cell.depth)))});
+  }
+  // cell_codes.cpp's guesses hold for walls within 2^36 coded cells of the anchor: else partition
+  if (levels < 1 || farthest >= 0x1p36 * double(step) * lattice_.unit) return insert_range(id, cell, from, to, temp);
+  static_assert(sizeof(Point) == 3 * sizeof(float) || sizeof(Point) == 7 * sizeof(float));
+  std::uint8_t* unsure = reinterpret_cast<std::uint8_t*>(codes_temp);  // free until the sort
+  guess_cell_codes(grid, from->p.data(), sizeof(Point) / sizeof(float), m, codes, unsure);
+  for (std::uint32_t i = 0; i < m; ++i) {
+    if (unsure[i] == 0) continue;
+    // within 2^-12 of a wall: the walls themselves decide, as the octant tests would
+    std::uint32_t code = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double p = from[i].p[std::size_t(a)];
+      const auto last = std::int64_t(grid.cells) - 1;
+      std::int64_t j = std::clamp(std::int64_t((p - grid.low[std::size_t(a)]) * grid.inverse[std::size_t(a)]),
+                                  std::int64_t{0}, last);
+      j -= std::int64_t(p < lattice_.wall(a, cell.lo[a] + j * step));
+      j += std::int64_t(j < last && p >= lattice_.wall(a, cell.lo[a] + (j + 1) * step));
+      assert(j >= 0 && j <= last);
+      code |= spread_bits(std::uint32_t(j)) << a;
+    }
+    codes[i] = code << grid.shift;
+  }
+  sort_pass(from, codes, m, 0, temp, codes_temp);
+  sort_pass(temp, codes_temp, m, kDigitBits, from, codes);
+  return descend_sorted(id, cell, 0, from, to, temp, codes);
+}
+
+template <class Point>
+Tree::Added Tree::descend_sorted(std::uint32_t id, const Cell& cell, int level, Point* from, Point* to, Point* temp,
+                                 const std::uint32_t* codes) {
+  const auto m = std::uint32_t(to - from);
+  if (level == kCodeLevels || cell.depth >= lattice_.max_depth ||
+      (nodes_[id].leaf && nodes_[id].count + m <= cfg_.leaf_capacity)) {
+    return insert_range(id, cell, from, to, temp);  // a leaf with room, or below the coded levels
+  }
+  if (nodes_[id].leaf) split(id, cell);  // holds at most leaf_capacity: its children need no split
+  nodes_.prefetch_children(id);
+  Added added;
+  const int shift = 3 * (kCodeLevels - 1 - level);
+  for (std::uint32_t begin = 0, end = 0; begin < m; begin = end) {  // an octant's points lie together, in order
+    const std::uint32_t octant = (codes[begin] >> shift) & 7u;
+    while (end < m && ((codes[end] >> shift) & 7u) == octant) ++end;
+    const std::uint32_t ch = child_or_new(id, cell, int(octant));
+    added.merge(descend_sorted(ch, lattice_.child(cell, int(octant)), level + 1, from + begin, from + end,
+                               temp + begin, codes + begin));
+  }
+  nodes_[id].count += m;
+  added.add_to(nodes_[id]);
+  return added;
+}
+
+template Tree::Added Tree::insert_sorted(std::uint32_t, const Cell&, StoredPoint*, StoredPoint*, StoredPoint*,
+                                         std::uint32_t*, std::uint32_t*);
+template Tree::Added Tree::insert_sorted(std::uint32_t, const Cell&, BarePoint*, BarePoint*, BarePoint*,
+                                         std::uint32_t*, std::uint32_t*);
+
+}  // namespace eco::detail

@@ -1,0 +1,108 @@
+// guess_cell_codes, the cells a few levels below a lattice cell for many points in vector code,
+// against the octant tests the tree descends by: wherever a guess is sure it names the cell those
+// tests lead to, on walls, a float below them and between them, near the lattice's origin and far
+// from it; points outside the cell, and NaN, are never sure.
+
+#include "core/cell_codes.hpp"
+#include "core/geometry.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+namespace eco::detail {
+namespace {
+
+/// The code the octant tests give for p below `cell`, `levels` deep, shifted as `grid` shifts.
+std::uint32_t descended_code(const Lattice& lattice, Cell cell, int levels, const std::array<float, 3>& p, int shift) {
+  std::uint32_t code = 0;
+  for (int level = 0; level < levels; ++level) {
+    const int octant = lattice.octant(cell, p);
+    code |= std::uint32_t(octant) << (3 * (levels - 1 - level));
+    cell = lattice.child(cell, octant);
+  }
+  return code << shift;
+}
+
+TEST(CellCodes, SureGuessesNameTheCellsTheOctantTestsLeadTo) {
+  struct Case {
+    std::array<double, 3> origin;
+    double unit;
+    int max_depth;
+  };
+  const std::vector<Case> cases{{{0.0, 0.0, 0.0}, 0.05, 9},
+                                {{-10.3, 5.1, 0.7}, 0.0390625, 10},
+                                {{2047.9, -1999.3, 3.1}, 0.07, 8},
+                                {{0.1, 0.2, 0.3}, 0.123, 6}};
+  std::mt19937 rng(3);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (const Case& c : cases) {
+    Lattice lattice;
+    lattice.origin = c.origin;
+    lattice.unit = c.unit;
+    lattice.max_depth = c.max_depth;
+    for (int depth = 0; depth < c.max_depth; ++depth) {
+      const int levels = std::min(kCodeLevels, c.max_depth - depth);
+      const std::int64_t side = lattice.side(depth), step = lattice.side(depth + levels);
+      std::uniform_int_distribution<std::int64_t> which(-3, 3);
+      const Cell cell{{which(rng) * side, which(rng) * side, which(rng) * side}, depth};
+      CodeGrid grid;
+      grid.cells = 1u << levels;
+      grid.shift = 3 * (kCodeLevels - levels);
+      for (int a = 0; a < 3; ++a) {
+        grid.low[std::size_t(a)] = lattice.wall(a, cell.lo[a]);
+        grid.inverse[std::size_t(a)] = 1.0 / (double(step) * lattice.unit);
+      }
+      std::uniform_int_distribution<std::int64_t> wall(0, side);
+      std::uniform_real_distribution<double> inside(0.0, 1.0);
+      for (const std::size_t stride : {std::size_t{3}, std::size_t{7}}) {
+        const std::size_t n = 200;
+        std::vector<float> data(n * stride, -1.0f);
+        std::vector<std::array<float, 3>> points(n);
+        std::vector<std::uint8_t> inside_cell(n, 1);
+        for (std::size_t i = 0; i < n; ++i) {
+          for (int a = 0; a < 3; ++a) {
+            float f = 0.0f;
+            const int choice = i >= n / 2 ? 3 : int(rng() % 4);  // the second half: random points alone
+            if (choice == 3) {  // anywhere in the cell
+              f = float(lattice.wall(a, cell.lo[a]) + inside(rng) * double(side) * lattice.unit);
+            } else {  // on a wall of the finest cells (or the float below one), the cell's own too
+              const double w = lattice.wall(a, cell.lo[a] + wall(rng) / step * step);
+              f = float(w);
+              if (double(f) < w) f = std::nextafter(f, kInf);
+              if (choice == 1) f = std::nextafter(f, -kInf);
+            }
+            points[i][std::size_t(a)] = f;
+          }
+          if (i % 50 == 7) points[i][0] = std::numeric_limits<float>::quiet_NaN();
+          inside_cell[i] = std::uint8_t(points[i][0] == points[i][0] && lattice.contains(cell, points[i]));
+          for (std::size_t a = 0; a < 3; ++a) data[i * stride + a] = points[i][a];
+        }
+        std::vector<std::uint32_t> codes(n + 1, 7);
+        std::vector<std::uint8_t> unsure(n + 1, 7);
+        guess_cell_codes(grid, data.data(), stride, n, codes.data(), unsure.data());
+        std::size_t sure_random = 0, random = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (i >= n / 2 && inside_cell[i]) {
+            ++random;
+            sure_random += unsure[i] == 0;
+          }
+          if (unsure[i] != 0) continue;
+          ASSERT_TRUE(inside_cell[i]) << "a point outside the cell was sure, depth " << depth;
+          ASSERT_EQ(codes[i], descended_code(lattice, cell, levels, points[i], grid.shift))
+              << points[i][0] << " " << points[i][1] << " " << points[i][2] << ", depth " << depth << ", stride " << stride;
+        }
+        EXPECT_EQ(codes[n], 7u) << "wrote past the points";
+        EXPECT_EQ(unsure[n], 7u) << "wrote past the points";
+        // a random coordinate lies within 2^-12 of a wall once in 2^11
+        EXPECT_GE(sure_random, random * 95 / 100) << "depth " << depth << ", stride " << stride;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace eco::detail
