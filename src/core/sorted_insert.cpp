@@ -8,8 +8,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cassert>
-#include <cmath>
 #include <utility>
 
 namespace eco::detail {
@@ -42,38 +40,10 @@ Tree::Added Tree::insert_sorted(std::uint32_t id, const Cell& cell, Point* from,
                                 std::uint32_t* codes, std::uint32_t* codes_temp) {
   const auto m = std::uint32_t(to - from);
   const int levels = std::min(kCodeLevels, lattice_.max_depth - cell.depth);
-  const std::int64_t step = lattice_.side(cell.depth + levels);  // the coded cells' side, in lattice units
-  CodeGrid grid;
-  grid.cells = 1u << levels;
-  grid.shift = 3 * (kCodeLevels - levels);  // the first level in the top bits, however many are coded
-  double farthest = 0.0;
-  for (int a = 0; a < 3; ++a) {
-    grid.low[std::size_t(a)] = lattice_.wall(a, cell.lo[a]);
-    grid.inverse[std::size_t(a)] = 1.0 / (double(step) * lattice_.unit);
-    farthest = std::max({farthest, std::abs(grid.low[std::size_t(a)]),
-                         std::abs(lattice_.wall(a, cell.lo[a] + lattice_.side(cell.depth)))});
-  }
-  // cell_codes.cpp's guesses hold for walls within 2^36 coded cells of the anchor: else partition
-  if (levels < 1 || farthest >= 0x1p36 * double(step) * lattice_.unit) return insert_range(id, cell, from, to, temp);
-  static_assert(sizeof(Point) == 3 * sizeof(float) || sizeof(Point) == 7 * sizeof(float));
-  std::uint8_t* unsure = reinterpret_cast<std::uint8_t*>(codes_temp);  // free until the sort
-  guess_cell_codes(grid, from->p.data(), sizeof(Point) / sizeof(float), m, codes, unsure);
-  for (std::uint32_t i = 0; i < m; ++i) {
-    if (unsure[i] == 0) continue;
-    // within 2^-12 of a wall: the walls themselves decide, as the octant tests would
-    std::uint32_t code = 0;
-    for (int a = 0; a < 3; ++a) {
-      const double p = from[i].p[std::size_t(a)];
-      const auto last = std::int64_t(grid.cells) - 1;
-      std::int64_t j = std::clamp(std::int64_t((p - grid.low[std::size_t(a)]) * grid.inverse[std::size_t(a)]),
-                                  std::int64_t{0}, last);
-      j -= std::int64_t(p < lattice_.wall(a, cell.lo[a] + j * step));
-      j += std::int64_t(j < last && p >= lattice_.wall(a, cell.lo[a] + (j + 1) * step));
-      assert(j >= 0 && j <= last);
-      code |= spread_bits(std::uint32_t(j)) << a;
-    }
-    codes[i] = code << grid.shift;
-  }
+  if (levels < 1) return insert_range(id, cell, from, to, temp);
+  // the first level in the top bits, however many are coded
+  const CodeGrid grid = code_grid(lattice_, cell, levels, 3 * (kCodeLevels - levels));
+  find_cell_codes(lattice_, cell, grid, from, m, codes, reinterpret_cast<std::uint8_t*>(codes_temp));
   sort_pass(from, codes, m, 0, temp, codes_temp);
   sort_pass(temp, codes_temp, m, kDigitBits, from, codes);
   return descend_sorted(id, cell, 0, from, to, temp, codes);

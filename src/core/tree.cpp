@@ -1,5 +1,7 @@
 #include "core/tree.hpp"
 
+#include "core/cell_codes.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -200,13 +202,10 @@ void Tree::insert_batch(std::vector<Point>& batch) {
   if (depth == 0) {
     first[1] = std::uint32_t(batch.size());
   } else {
-    const WorldGrid cells = lattice_.grid(depth);
-    for (std::size_t i = 0; i < batch.size(); ++i) {
-      const std::int64_t slot = start_slot(lattice_.cell_of(depth, cells.index(batch[i].p)));
-      assert(slot >= 0);
-      slot_of[i] = std::uint32_t(slot);
-      ++first[std::size_t(slot) + 1];
-    }
+    // a start cell's slot is its Morton code below the root (start_slot)
+    find_cell_codes(lattice_, root_cell_, code_grid(lattice_, root_cell_, depth, 0), batch.data(), batch.size(),
+                    slot_of.data(), reinterpret_cast<std::uint8_t*>(codes.data()));
+    for (std::size_t i = 0; i < batch.size(); ++i) ++first[std::size_t(slot_of[i]) + 1];
     // first[s + 1] becomes where group s starts, then where it ends as the points go in: at the
     // end first[s] is where group s starts (no second array of positions)
     std::uint32_t start = 0;
@@ -491,11 +490,11 @@ void Tree::collapse(std::uint32_t id) {
 
 std::int64_t Tree::start_slot(const Cell& cell) const {
   const int log2_side = lattice_.max_depth - start_.depth;
-  std::int64_t slot = 0;
-  for (int a = 2; a >= 0; --a) {
+  std::uint32_t slot = 0;  // the cell's Morton code below the root: a start cell's points are found by theirs
+  for (int a = 0; a < 3; ++a) {
     const std::int64_t rel = (cell.lo[a] - root_cell_.lo[a]) >> log2_side;  // a division by side(start depth)
     if (cell.lo[a] < root_cell_.lo[a] || rel >= start_.per_axis) return -1;
-    slot = slot * start_.per_axis + rel;
+    slot |= spread_bits(std::uint32_t(rel)) << a;
   }
   return slot;
 }
@@ -507,6 +506,7 @@ void Tree::note_created(std::uint32_t id, const Cell& cell) {
 }
 
 void Tree::rebuild_start_table(int depth) {
+  assert(depth <= kCodeLevels);  // slots are Morton codes (start_slot)
   start_.depth = depth;
   start_.per_axis = std::int64_t{1} << depth;
   start_.slots.assign(depth == 0 ? 0 : std::size_t(start_.per_axis * start_.per_axis * start_.per_axis),

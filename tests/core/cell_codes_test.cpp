@@ -5,6 +5,7 @@
 
 #include "core/cell_codes.hpp"
 #include "core/geometry.hpp"
+#include "core/point_store.hpp"
 
 #include <gtest/gtest.h>
 
@@ -99,6 +100,52 @@ TEST(CellCodes, SureGuessesNameTheCellsTheOctantTestsLeadTo) {
         EXPECT_EQ(unsure[n], 7u) << "wrote past the points";
         // a random coordinate lies within 2^-12 of a wall once in 2^11
         EXPECT_GE(sure_random, random * 95 / 100) << "depth " << depth << ", stride " << stride;
+      }
+    }
+  }
+}
+
+TEST(CellCodes, FoundCodesAreTheOctantTestsForEveryPoint) {
+  // find_cell_codes: the guesses where sure, the walls elsewhere, and the walls alone for a grid
+  // too far out for guesses (as if its walls lay beyond 2^36 of its cells)
+  Lattice lattice;
+  lattice.origin = {-3.3, 1.7, 0.4};
+  lattice.unit = 0.05;
+  lattice.max_depth = 9;
+  std::mt19937 rng(8);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (const int depth : {0, 3, 5}) {
+    const int levels = std::min(kCodeLevels, lattice.max_depth - depth);
+    const Cell cell{{-lattice.side(depth), 0, 2 * lattice.side(depth)}, depth};
+    const std::int64_t step = lattice.side(depth + levels);
+    std::uniform_int_distribution<std::int64_t> wall(0, lattice.side(depth) / step - 1);
+    std::vector<BarePoint> bare;
+    std::vector<StoredPoint> stored;
+    for (int i = 0; i < 500; ++i) {
+      BarePoint b;
+      for (int a = 0; a < 3; ++a) {
+        const double w = lattice.wall(a, cell.lo[a] + wall(rng) * step);
+        float f = float(w);
+        if (double(f) < w) f = std::nextafter(f, kInf);
+        if (rng() % 2 == 0) f = float(w + 0.5 * double(step) * lattice.unit);  // between walls
+        b.p[std::size_t(a)] = f;
+      }
+      ASSERT_TRUE(lattice.contains(cell, b.p));
+      bare.push_back(b);
+      stored.push_back(StoredPoint{b.p, 7, 8, 9.0f, 10.0f});
+    }
+    for (const bool guessable : {true, false}) {
+      CodeGrid grid = code_grid(lattice, cell, levels, 3 * (kCodeLevels - levels));
+      ASSERT_TRUE(grid.guessable);
+      grid.guessable = guessable;
+      std::vector<std::uint32_t> from_bare(bare.size()), from_stored(bare.size());
+      std::vector<std::uint8_t> unsure(bare.size());
+      find_cell_codes(lattice, cell, grid, bare.data(), bare.size(), from_bare.data(), unsure.data());
+      find_cell_codes(lattice, cell, grid, stored.data(), stored.size(), from_stored.data(), unsure.data());
+      for (std::size_t i = 0; i < bare.size(); ++i) {
+        const std::uint32_t want = descended_code(lattice, cell, levels, bare[i].p, grid.shift);
+        ASSERT_EQ(from_bare[i], want) << "depth " << depth << ", point " << i << (guessable ? "" : ", walls alone");
+        ASSERT_EQ(from_stored[i], want) << "depth " << depth << ", point " << i << (guessable ? "" : ", walls alone");
       }
     }
   }
