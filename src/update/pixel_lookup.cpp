@@ -116,13 +116,13 @@ template <PixelLookup::Reach kReach>
   }
 }
 
-ECO_VECTOR_CLONES
+ECO_WIDE_VECTOR_CLONES
 void PixelLookup::first_tier(const Group& points, const FirstTierWalls& w, std::array<std::uint32_t, kGroup>& pixels,
                              std::array<double, kGroup>& ranges) {
   first_tier_lanes<Reach::Range>(points, w, pixels, ranges);
 }
 
-ECO_VECTOR_CLONES
+ECO_WIDE_VECTOR_CLONES
 void PixelLookup::first_tier_squared(const Group& points, const FirstTierWalls& w,
                                      std::array<std::uint32_t, kGroup>& pixels, std::array<double, kGroup>& squared) {
   first_tier_lanes<Reach::SquaredRange>(points, w, pixels, squared);
