@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <utility>
 
 namespace eco::baselines {
 namespace {
@@ -41,8 +42,15 @@ class ScanPass final : public Method {
         b.alive.hi[a] = std::min(b.alive.hi[a], box.hi[a]);
       }
     }
-    std::erase_if(batches_, [&](const Batch& b) { return b.bounds.empty() || b.alive.misses(b.bounds); });
+    std::erase_if(batches_, [&](Batch& b) {
+      if (!b.bounds.empty() && !b.alive.misses(b.bounds)) return false;
+      spare_ = std::move(b.points);  // a dropped frame's storage goes to the next: no frame pays for fresh pages
+      return true;
+    });
     Batch& fresh = batches_.emplace_back();
+    fresh.points = std::move(spare_);
+    fresh.points.clear();
+    spare_ = {};
     fresh.alive = box;
     fresh.points.reserve(scan.count);
     step.admission.for_each(scan, step.stats, [&](const std::array<float, 3>& p, std::size_t) { fresh.points.push_back(p); });
@@ -128,6 +136,7 @@ class ScanPass final : public Method {
 
   FlatFrame frame_;
   std::deque<Batch> batches_;
+  std::vector<std::array<float, 3>> spare_;  // the last dropped frame's storage, for the next frame
 };
 
 }  // namespace
