@@ -8,8 +8,8 @@ namespace eco::detail {
 namespace {
 
 /// A guess this far inside its cell is its cell: the walls and the guess are each within a few
-/// units of 2^-52 of a cell (a lattice's cells are at least 2^-40 of its walls' distance from the
-/// world's origin: Config::validate), far below it.
+/// units of 2^-52 of the walls' distance from the anchor, which a guessable grid keeps below 2^36
+/// cells (code_grid): a few units of 2^-16 of a cell, far below this.
 constexpr double kSure = 0x1p-12;
 
 template <std::size_t kStride>
