@@ -28,6 +28,15 @@ inline constexpr int kCodeLevels = 6;
   return j;
 }
 
+/// The inverse of spread_bits: bits 0, 3, ..., 15 of code moved to bits 0..5.
+[[nodiscard]] constexpr std::uint32_t compact_bits(std::uint32_t code) {
+  code &= 0x00049249u;
+  code = (code | code >> 2) & 0x000C30C3u;
+  code = (code | code >> 4) & 0x0000F00Fu;
+  code = (code | code >> 8) & 0x0000003Fu;
+  return code;
+}
+
 /// The cells `levels` below a lattice cell as plain numbers: on axis a, a point p lies
 /// (p - low[a]) * inverse[a] of them above the cell's lower wall.
 struct CodeGrid {
@@ -92,6 +101,7 @@ void find_cell_codes(const Lattice& lattice, const Cell& cell, const CodeGrid& g
     guess_cell_codes(grid, points->p.data(), sizeof(Point) / sizeof(float), n, codes, unsure);
   }
   for (std::size_t i = 0; i < n; ++i) {
+    assert(lattice.contains(cell, points[i].p));
     if (!grid.guessable || unsure[i] != 0) codes[i] = settled_code(lattice, cell, grid, points[i].p);
   }
 }

@@ -218,7 +218,7 @@ void Tree::insert_batch(std::vector<Point>& batch) {
     prefetch_start_node(b + 1, first);
     Point* group = batch.data() + first[b];
     const std::uint32_t m = first[b + 1] - first[b];
-    Cell cell = depth == 0 ? root_cell_ : lattice_.cell_at(depth, group->p);
+    Cell cell = depth == 0 ? root_cell_ : start_cell(std::uint32_t(b));
     const std::uint32_t id = depth == 0 ? root_ : start_node(cell, cell);
     if (m >= kSortedGroup) {
       insert_sorted(id, cell, group, group + m, temp.data() + first[b], codes.data() + first[b],
@@ -497,6 +497,13 @@ std::int64_t Tree::start_slot(const Cell& cell) const {
     slot |= spread_bits(std::uint32_t(rel)) << a;
   }
   return slot;
+}
+
+Cell Tree::start_cell(std::uint32_t slot) const {
+  const int log2_side = lattice_.max_depth - start_.depth;
+  Cell cell{root_cell_.lo, start_.depth};
+  for (int a = 0; a < 3; ++a) cell.lo[a] += std::int64_t(compact_bits(slot >> a)) << log2_side;
+  return cell;
 }
 
 void Tree::note_created(std::uint32_t id, const Cell& cell) {

@@ -269,6 +269,8 @@ class Tree {
   void prefetch_start_node(std::size_t from, const std::vector<std::uint32_t>& first) const;
   void note_created(std::uint32_t id, const Cell& cell);
   std::int64_t start_slot(const Cell& cell) const;
+  /// The start-depth cell whose slot is `slot` (start_slot's inverse).
+  [[nodiscard]] Cell start_cell(std::uint32_t slot) const;
   /// Gives back the working buffers' memory when it is far above the `used` points a frame needs
   /// now (a first frame that took a whole map in), so they keep what steady frames use.
   void trim_buffers(std::size_t used);

@@ -28,6 +28,13 @@ std::uint32_t descended_code(const Lattice& lattice, Cell cell, int levels, cons
   return code << shift;
 }
 
+TEST(CellCodes, CompactBitsUndoesSpreadBits) {
+  for (std::uint32_t j = 0; j < (1u << kCodeLevels); ++j) {
+    EXPECT_EQ(compact_bits(spread_bits(j)), j);
+    EXPECT_EQ(compact_bits(spread_bits(j) << 1 | spread_bits(63 - j) << 2 | spread_bits(j)), j);  // other axes ignored
+  }
+}
+
 TEST(CellCodes, SureGuessesNameTheCellsTheOctantTestsLeadTo) {
   struct Case {
     std::array<double, 3> origin;
