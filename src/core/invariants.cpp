@@ -39,6 +39,7 @@ class Checker {
       if (n.count > t_.config().leaf_capacity && n.depth < t_.lattice().max_depth) {
         fail(id, "overfull leaf above the minimum cell size");
       }
+      if (n.link != detail::kNone && t_.points().owner_of(n.link) != id) fail(id, "its block names another owner");
       t_.points().for_each(n.link, n.count, [&](const detail::StoredPoint& s) {
         ++count;
         bounds.grow(s.p[0], s.p[1], s.p[2]);

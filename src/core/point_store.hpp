@@ -12,6 +12,7 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <type_traits>
@@ -71,12 +72,13 @@ class PointStore {
   explicit PointStore(Columns columns = {}) : columns_(columns) {}
 
   /// Appends [first, last) (StoredPoints, or BarePoints when no column is kept) to the block at
-  /// `link` that holds `count` points (kNone: no block yet).
+  /// `link` that holds `count` points (kNone: no block yet), of node `owner` (compact() tells it
+  /// when its block moves).
   template <class Point>
-  void append(std::uint32_t& link, std::uint32_t count, const Point* first, const Point* last) {
+  void append(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const Point* first, const Point* last) {
     const auto m = std::uint32_t(last - first);
     if (m == 0) return;
-    reserve(link, count, count + m);
+    reserve(link, owner, count, count + m);
     Block b = block(link);
     // column by column: each loop writes one array, with no test per point
     float* x = b.x + count;
@@ -97,7 +99,9 @@ class PointStore {
       assert(columns_.count() == 0);
     }
   }
-  void push(std::uint32_t& link, std::uint32_t count, const StoredPoint& s) { append(link, count, &s, &s + 1); }
+  void push(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const StoredPoint& s) {
+    append(link, owner, count, &s, &s + 1);
+  }
 
   /// The `count` points of the block at `link`.
   [[nodiscard]] PointSpan span(std::uint32_t link, std::uint32_t count) const {
@@ -117,7 +121,7 @@ class PointStore {
   /// Keeps the points for which keep(const StoredPoint&) holds, in order; returns how many.
   /// A block left far larger than its points moves to a smaller one; an empty one is released.
   template <class Keep>
-  std::uint32_t retain(std::uint32_t& link, std::uint32_t count, Keep&& keep) {
+  std::uint32_t retain(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, Keep&& keep) {
     if (link == kNone) return 0;
     Block b = block(link);
     std::uint32_t kept = 0;
@@ -128,7 +132,7 @@ class PointStore {
     if (kept == 0) {
       release(link);
     } else if (class_for(kept) + 1 < class_of(link)) {
-      move_to(link, kept, class_for(kept));
+      move_to(link, owner, kept, class_for(kept));
     }
     return kept;
   }
@@ -148,7 +152,9 @@ class PointStore {
 
   void release(std::uint32_t& link) {
     if (link == kNone) return;
-    pools_[std::size_t(class_of(link))].free.push_back(index_of(link));
+    Pool& p = pools_[std::size_t(class_of(link))];
+    p.free.push_back(index_of(link));
+    p.owners[index_of(link)] = kNone;
     link = kNone;
   }
 
@@ -157,9 +163,58 @@ class PointStore {
     std::size_t total = pools_.capacity() * sizeof(Pool);
     for (const Pool& p : pools_) {
       total += p.pages.size() * p.page_bytes + p.pages.capacity() * sizeof(p.pages[0]) +
-               p.free.capacity() * sizeof(std::uint32_t);
+               (p.free.capacity() + p.owners.capacity()) * sizeof(std::uint32_t);
     }
     return total;
+  }
+
+  /// The node the block at `link` (not kNone) was handed to.
+  [[nodiscard]] std::uint32_t owner_of(std::uint32_t link) const {
+    return pools_[std::size_t(class_of(link))].owners[index_of(link)];
+  }
+
+  /// Bytes of the blocks the pools hold free (compact() gives most of them back).
+  [[nodiscard]] std::size_t free_bytes() const {
+    std::size_t total = 0;
+    for (const Pool& p : pools_) total += p.free.size() * p.block_bytes;
+    return total;
+  }
+
+  /// Moves the live blocks at the top of each pool into free ones below, from the top down, and
+  /// releases the pages emptied behind them, as a map that shrank needs; stops once it has moved
+  /// `budget` bytes, so that no update pays for all at once. relink(owner, link) hands each moved
+  /// block's owner its new link. Returns the bytes moved.
+  template <class Relink>
+  std::size_t compact(std::size_t budget, Relink&& relink) {
+    std::size_t moved = 0;
+    for (std::size_t c = 0; c < pools_.size(); ++c) {
+      Pool& p = pools_[c];
+      while (p.used > 0 && moved < budget) {
+        const std::uint32_t top = p.used - 1;
+        if (p.owners[top] == kNone) {  // free: dropped where it lies
+          --p.used;
+          continue;
+        }
+        while (!p.free.empty() && p.free.back() >= top) p.free.pop_back();  // above the top: gone
+        if (p.free.empty()) break;
+        const std::uint32_t to = p.free.back();
+        p.free.pop_back();
+        const std::uint32_t from_link = std::uint32_t(c) << kIndexBits | top;
+        const std::uint32_t to_link = std::uint32_t(c) << kIndexBits | to;
+        std::memcpy(address(to_link), address(from_link), p.block_bytes);
+        p.owners[to] = p.owners[top];
+        relink(p.owners[top], to_link);
+        --p.used;
+        moved += p.block_bytes;
+      }
+      std::erase_if(p.free, [&](std::uint32_t i) { return i >= p.used; });
+      p.owners.resize(p.used);
+      p.pages.resize((std::size_t(p.used) + (std::size_t{1} << p.per_page_shift) - 1) >> p.per_page_shift);
+      if (4 * p.pages.size() < p.pages.capacity()) p.pages.shrink_to_fit();
+      if (4 * p.free.size() < p.free.capacity()) p.free.shrink_to_fit();
+      if (4 * p.owners.size() < p.owners.capacity()) p.owners.shrink_to_fit();
+    }
+    return moved;
   }
 
   /// Points a block of size class c holds: 2, 3, 4, 5, 6, 8, 10, 12, 16, 20, 24, 32, ... (steps
@@ -196,6 +251,7 @@ class PointStore {
     std::vector<std::unique_ptr<std::byte[]>> pages;
     std::uint32_t used = 0;  // blocks handed out so far, free or not
     std::vector<std::uint32_t> free;
+    std::vector<std::uint32_t> owners;  // per block handed out: its node, kNone while free
   };
   struct Block {
     float* x;
@@ -209,11 +265,15 @@ class PointStore {
   static int class_of(std::uint32_t link) { return int(link >> kIndexBits); }
   static std::uint32_t index_of(std::uint32_t link) { return link & kIndexMask; }
 
+  /// Where the block at `link` starts.
+  [[nodiscard]] std::byte* address(std::uint32_t link) const {
+    const Pool& p = pools_[std::size_t(class_of(link))];
+    const std::uint32_t i = index_of(link);
+    return p.pages[i >> p.per_page_shift].get() + (i & ((1u << p.per_page_shift) - 1)) * p.block_bytes;
+  }
   [[nodiscard]] Block block(std::uint32_t link) const {
     const int c = class_of(link);
-    const Pool& p = pools_[std::size_t(c)];
-    const std::uint32_t i = index_of(link);
-    std::byte* at = p.pages[i >> p.per_page_shift].get() + (i & ((1u << p.per_page_shift) - 1)) * p.block_bytes;
+    std::byte* at = address(link);
     const std::uint32_t cap = capacity_of(c);
     std::byte* column = at + 3 * sizeof(float) * cap;  // the kept columns follow x, y, z in order
     auto next = [&]<class T>(bool kept, T*) -> T* {
@@ -246,14 +306,14 @@ class PointStore {
     if (b.times) b.times[i] = s.time;
   }
 
-  /// Makes the block at `link` (holding `count`) hold at least `needed` points.
-  void reserve(std::uint32_t& link, std::uint32_t count, std::uint32_t needed) {
+  /// Makes the block at `link` (holding `count`, of node `owner`) hold at least `needed` points.
+  void reserve(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, std::uint32_t needed) {
     if (link != kNone && capacity_of(class_of(link)) >= needed) return;
-    move_to(link, count, class_for(needed));
+    move_to(link, owner, count, class_for(needed));
   }
-  /// Moves the `count` points at `link` to a fresh block of class c.
-  void move_to(std::uint32_t& link, std::uint32_t count, int c) {
-    const std::uint32_t fresh = take(c);
+  /// Moves the `count` points at `link` (of node `owner`) to a fresh block of class c.
+  void move_to(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, int c) {
+    const std::uint32_t fresh = take(c, owner);
     if (link != kNone) {
       copy_points(block(link), block(fresh), count);
       release(link);
@@ -268,7 +328,7 @@ class PointStore {
     if (from.intensities) std::copy_n(from.intensities, count, to.intensities);
     if (from.times) std::copy_n(from.times, count, to.times);
   }
-  std::uint32_t take(int c) {
+  std::uint32_t take(int c, std::uint32_t owner) {
     if (pools_.size() <= std::size_t(c)) pools_.resize(std::size_t(c) + 1);
     Pool& p = pools_[std::size_t(c)];
     if (p.block_bytes == 0) {
@@ -286,7 +346,9 @@ class PointStore {
         p.pages.push_back(std::make_unique_for_overwrite<std::byte[]>(p.page_bytes));
       }
       i = p.used++;
+      p.owners.push_back(kNone);
     }
+    p.owners[i] = owner;
     return std::uint32_t(c) << kIndexBits | i;
   }
 

@@ -260,6 +260,12 @@ void trim(std::vector<T>& buffer, std::size_t used) {
 
 }  // namespace
 
+void Tree::give_back_memory(std::size_t floor) {
+  const std::size_t free = points_.free_bytes();
+  if (free == 0 || free < floor || free * kFreeShare < points_.bytes()) return;
+  points_.compact(kCompactionBudget, [&](std::uint32_t owner, std::uint32_t link) { nodes_[owner].link = link; });
+}
+
 void Tree::trim_buffers(std::size_t used) {
   std::apply([&](auto&... typed) { ((trim(typed.scan, used), trim(typed.points, used)), ...); },
              batch_buffers_.by_type);
@@ -302,7 +308,7 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
   Added added;
   if (nodes_[id].leaf && (nodes_[id].count + m <= cfg_.leaf_capacity || cell.depth >= lattice_.max_depth)) {
     Node& n = nodes_[id];
-    points_.append(n.link, n.count, from, to);
+    points_.append(n.link, id, n.count, from, to);
     n.count += m;
     for (const Point* s = from; s != to; ++s) {
       added.bounds.grow(s->p[0], s->p[1], s->p[2]);
@@ -385,8 +391,9 @@ void Tree::split(std::uint32_t id, const Cell& cell) {
     const StoredPoint* from = grouped + begin[std::size_t(o)];
     const StoredPoint* to = grouped + begin[std::size_t(o) + 1];
     if (from == to) continue;
-    Node& n = nodes_[child_or_new(id, cell, o)];
-    points_.append(n.link, n.count, from, to);
+    const std::uint32_t child = child_or_new(id, cell, o);
+    Node& n = nodes_[child];
+    points_.append(n.link, child, n.count, from, to);
     n.count += std::uint32_t(to - from);
     for (const StoredPoint* s = from; s != to; ++s) {
       n.bounds.grow(s->p[0], s->p[1], s->p[2]);
@@ -458,7 +465,7 @@ void Tree::drop(std::uint32_t id, UpdateStats& stats) {
 
 void Tree::filter_leaf(std::uint32_t id, const Box& box, UpdateStats& stats) {
   Node& n = nodes_[id];
-  n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) { return keeps(s, box, stats); });
+  n.count = points_.retain(n.link, id, n.count, [&](const StoredPoint& s) { return keeps(s, box, stats); });
   refit(id);
 }
 
@@ -480,7 +487,7 @@ void Tree::collapse(std::uint32_t id) {
   nodes_.make_leaf_of_inner(id);
   Node& n = nodes_[id];
   n.count = 0;
-  points_.append(n.link, 0, scratch_.data() + base, scratch_.data() + scratch_.size());
+  points_.append(n.link, id, 0, scratch_.data() + base, scratch_.data() + scratch_.size());
   n.count = std::uint32_t(scratch_.size() - base);
   scratch_.resize(base);
 }

@@ -107,6 +107,15 @@ class Tree {
   /// Counts the density cells of `held` anew (after the precision origin moved, their keys did).
   void recount_density(const std::vector<StoredPoint>& held);
 
+  /// Gives back the memory a map that shrank holds in its point pools' free blocks, while it is
+  /// at least a kFreeShare of them and `floor` bytes: the live blocks at the top of each pool move
+  /// into free ones below, kCompactionBudget bytes an update at most, and the pages behind them
+  /// are released. No point changes, only where it lies.
+  void give_back_memory(std::size_t floor = kMemoryFloor);
+  static constexpr std::size_t kFreeShare = 8;                        // an eighth
+  static constexpr std::size_t kMemoryFloor = std::size_t{1} << 20;   // below, not worth it
+  static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
+
   // --- insertion --------------------------------------------------------------------------------
   /// Inserts every point of `batch` (each in the root cell), reordering it: the points are
   /// partitioned by octant top-down from the start table's depth, so each node on their way
@@ -178,7 +187,7 @@ class Tree {
   template <class Keep>
   void retain(std::uint32_t id, Keep&& keep) {
     Node& n = nodes_[id];
-    n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) {
+    n.count = points_.retain(n.link, id, n.count, [&](const StoredPoint& s) {
       if (keep(s)) return true;
       forget(s);
       return false;

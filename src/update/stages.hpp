@@ -67,7 +67,8 @@ void reinsert(Tree& tree, std::vector<StoredPoint>& points, UpdateStats& stats);
 void insert_scan(Tree& tree, const Motion& motion, ScanView scan, const Tree::KeptImage* before,
                  UpdateStats& stats);
 
-/// One update (EgoOctree::update): begin_update(), then the four stages. Returns the frame's
+/// One update (EgoOctree::update): begin_update(), then the four stages, then 5., the memory a
+/// map that shrank holds free given back (Tree::give_back_memory). Returns the frame's
 /// statistics.
 UpdateStats run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
 /// Every update's preamble (ECO's and the baselines'): checks the arguments against the

@@ -106,6 +106,7 @@ UpdateStats detail::run_update(Tree& tree, const Eigen::Isometry3d& world_T_sens
   const auto* before = clear_free_space(tree, motion, scan, displaced, stats);     //    seen through
   displaced = refine_overlap(tree, motion, std::move(displaced), stats);           // 3. R_over
   insert_shift_in(tree, motion, scan, std::move(displaced), before, stats);        // 4. R_in
+  tree.give_back_memory();                                                         // 5. memory
   return stats;
 }
 

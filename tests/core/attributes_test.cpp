@@ -36,17 +36,7 @@ Eigen::Isometry3d pose_at(int t) {
   return pose;
 }
 
-struct Scan {
-  std::vector<Eigen::Vector3f> points;
-  ScanAttributes attributes;
-  [[nodiscard]] ScanView view() const {
-    ScanView v(points);
-    v.ids = attributes.ids.data();
-    v.intensities = attributes.intensities.data();
-    v.times = attributes.times.data();
-    return v;
-  }
-};
+using Scan = AttributedScan;
 
 /// Points in and around the box (some repeated, one not finite), ids unique over the stream,
 /// times sweeping the frame's interval; every fifth frame a few points already 30 s old.

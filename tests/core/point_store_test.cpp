@@ -1,7 +1,7 @@
 // PointStore, the leaves' point blocks, against a vector per leaf: appends that grow a block
 // through its size classes, in-place retains that shrink it, drains and releases, for sets of
 // optional columns (stamps, ids, intensities, times); released blocks are reused before the pools
-// grow.
+// grow, and compaction moves blocks to the pools' front and gives the emptied pages back.
 
 #include "core/point_store.hpp"
 
@@ -78,7 +78,7 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndRelea
     switch (rng() % 8) {
       case 0: {  // retain: drop points below a random x
         const float cut = coord(rng);
-        const std::uint32_t left = store.retain(link, count, [&](const StoredPoint& s) { return s.p[0] >= cut; });
+        const std::uint32_t left = store.retain(link, std::uint32_t(leaf), count, [&](const StoredPoint& s) { return s.p[0] >= cut; });
         std::erase_if(expected, [&](const StoredPoint& s) { return s.p[0] < cut; });
         ASSERT_EQ(left, expected.size());
         ASSERT_EQ(link == kNone, left == 0);
@@ -97,6 +97,18 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndRelea
         ASSERT_EQ(link, kNone);
         expected.clear();
         break;
+      case 3:  // now and then, blocks move to the pools' front: every leaf keeps its points
+        if (rng() % 16 == 0) {
+          store.compact(std::size_t(rng() % 20000), [&](std::uint32_t owner, std::uint32_t moved) {
+            ASSERT_LT(owner, std::uint32_t(kLeaves));
+            links[owner] = moved;
+          });
+          for (std::size_t other = 0; other < kLeaves; ++other) {
+            ASSERT_TRUE(same(contents(store, links[other], std::uint32_t(model[other].size())), model[other]))
+                << "leaf " << other << " after compaction at step " << step;
+          }
+        }
+        break;
       default: {  // append a range, now and then a long one (large classes)
         const std::size_t m = rng() % 10 == 0 ? rng() % 3000 : 1 + rng() % 20;
         std::vector<StoredPoint> batch(m);
@@ -105,7 +117,7 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndRelea
                kept.intensities ? coord(rng) : 0.0f, kept.times ? coord(rng) * 1e3f : 0.0f};
           ++next_stamp;
         }
-        store.append(link, count, batch.data(), batch.data() + batch.size());
+        store.append(link, std::uint32_t(leaf), count, batch.data(), batch.data() + batch.size());
         expected.insert(expected.end(), batch.begin(), batch.end());
         break;
       }
@@ -129,7 +141,7 @@ TEST(PointStore, EachKeptColumnCostsFourBytesAPoint) {
   for (int columns = 0; columns <= 4; ++columns) {
     PointStore store(columns_of((1 << columns) - 1));
     std::uint32_t link = kNone;
-    store.append(link, 0, batch.data(), batch.data() + batch.size());
+    store.append(link, 0, 0, batch.data(), batch.data() + batch.size());
     const std::size_t bytes = store.bytes();
     if (columns > 0) {
       EXPECT_NEAR(double(bytes - previous) / double(batch.size()), 4.0, 0.1) << columns;
@@ -142,15 +154,64 @@ TEST(PointStore, ReleasedBlocksAreReusedBeforeThePoolsGrow) {
   PointStore store(Columns{true, true, true, true});
   std::vector<StoredPoint> batch(50);
   std::vector<std::uint32_t> links(100, kNone);
-  for (std::uint32_t& link : links) store.append(link, 0, batch.data(), batch.data() + batch.size());
+  for (std::uint32_t& link : links) store.append(link, 0, 0, batch.data(), batch.data() + batch.size());
   for (std::uint32_t& link : links) store.release(link);  // the free lists reach their size
-  for (std::uint32_t& link : links) store.append(link, 0, batch.data(), batch.data() + batch.size());
+  for (std::uint32_t& link : links) store.append(link, 0, 0, batch.data(), batch.data() + batch.size());
   const std::size_t bytes = store.bytes();
   for (int round = 0; round < 5; ++round) {
     for (std::uint32_t& link : links) store.release(link);
-    for (std::uint32_t& link : links) store.append(link, 0, batch.data(), batch.data() + batch.size());
+    for (std::uint32_t& link : links) store.append(link, 0, 0, batch.data(), batch.data() + batch.size());
     ASSERT_EQ(store.bytes(), bytes) << round;
   }
+}
+
+TEST(PointStore, CompactionGivesBackThePagesAShrunkMapEmptiedWithinItsBudget) {
+  PointStore store(Columns{false, true, true, true});
+  std::mt19937 rng(5);
+  std::vector<std::uint32_t> links(6000, kNone);
+  std::vector<std::vector<StoredPoint>> model(links.size());
+  const auto owner = [](std::size_t i) { return std::uint32_t(1000 + i); };  // any numbers
+  const auto all_held = [&] {
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      ASSERT_TRUE(same(contents(store, links[i], std::uint32_t(model[i].size())), model[i])) << "leaf " << i;
+      if (links[i] != kNone) ASSERT_EQ(store.owner_of(links[i]), owner(i));
+    }
+  };
+  for (std::size_t i = 0; i < links.size(); ++i) {  // blocks of many sizes, interleaved
+    model[i].resize(1 + rng() % 40);
+    for (StoredPoint& s : model[i]) s = {{float(i), float(rng() % 1000), 0.5f}, 0, std::uint32_t(rng()), 1.5f, 2.5f};
+    store.append(links[i], owner(i), 0, model[i].data(), model[i].data() + model[i].size());
+  }
+  const std::size_t full = store.bytes();
+  EXPECT_EQ(store.free_bytes(), 0u);
+  for (std::size_t i = 0; i < links.size(); ++i) {  // a map that shrank: nine leaves in ten leave
+    if (i % 10 != 3) {
+      store.release(links[i]);
+      model[i].clear();
+    }
+  }
+  EXPECT_GT(store.free_bytes(), full / 2);
+  const auto relink = [&](std::uint32_t o, std::uint32_t link) { links[o - 1000] = link; };
+  constexpr std::size_t kBudget = 20000;
+  std::size_t calls = 0;
+  for (std::size_t moved = 1; moved > 0; ++calls) {  // as updates would: a budget at a time
+    const std::size_t before = store.bytes();
+    moved = store.compact(kBudget, relink);
+    EXPECT_LE(moved, kBudget + 4096) << "one block past the budget at most";
+    EXPECT_LE(store.bytes(), before);
+    all_held();
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(calls, 3u);
+  EXPECT_LT(store.bytes(), full / 5) << "the emptied pages are given back";
+  EXPECT_LT(store.free_bytes(), full / 20);
+  // the store goes on as before: blocks grow, move and are released
+  for (std::size_t i = 0; i < links.size(); i += 7) {
+    std::vector<StoredPoint> more(1 + rng() % 30, StoredPoint{{1, 2, 3}, 0, 9, 8, 7});
+    store.append(links[i], owner(i), std::uint32_t(model[i].size()), more.data(), more.data() + more.size());
+    model[i].insert(model[i].end(), more.begin(), more.end());
+  }
+  all_held();
 }
 
 }  // namespace

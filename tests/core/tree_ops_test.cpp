@@ -171,5 +171,42 @@ TEST_F(TreeOpsTest, DropAndFilterCountWhatLeaves) {
   EXPECT_EQ(check_tree(*tree_), "");
 }
 
+TEST_F(TreeOpsTest, GivingBackMemoryMovesNoPointAndFreesTheBlocksAShrunkMapHeld) {
+  for (const Recentring recentring : {Recentring::Quantised, Recentring::Exact}) {
+    SCOPED_TRACE(recentring == Recentring::Exact ? "Exact" : "Quantised");
+    Config config;
+    config.recentring = recentring;
+    fill(config, 40000);
+    const std::size_t full = tree_->points().bytes();
+    UpdateStats stats;
+    Motion motion = *tree_->motion();
+    Box& corner = motion.box;  // keep the far corner from the clusters: most points and nodes leave
+    for (int a = 0; a < 3; ++a) corner.lo[a] = corner.hi[a] - 0.6 * (corner.hi[a] - corner.lo[a]);
+    prune_shift_out(*tree_, motion, stats);
+    const Points want = held();
+    ASSERT_LT(want.size(), inserted_.size() / 4);
+    const std::size_t shrunk = tree_->points().bytes();
+    EXPECT_GT(shrunk, full / 2) << "the pools keep what they held";
+
+    tree_->give_back_memory(0);  // within one budget here
+    EXPECT_EQ(held(), want);
+    EXPECT_EQ(check_tree(*tree_), "") << "every leaf's block moved with its link";
+    EXPECT_LT(tree_->points().bytes(), shrunk / 2);
+    // and the tree goes on: what comes in is held beside what stayed
+    std::vector<StoredPoint> more;
+    Points expected = want;
+    for (std::size_t i = 0; i < 3000; ++i) {
+      const std::array<float, 3> p{float(corner.lo[0] + 0.001 * double(i)), float(corner.lo[1] + 0.5), float(corner.lo[2] + 0.25)};
+      more.push_back(StoredPoint{p});
+      expected.push_back(p);
+    }
+    tree_->insert_batch(more);
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(held(), expected);
+    EXPECT_EQ(check_tree(*tree_), "");
+    inserted_.clear();
+  }
+}
+
 }  // namespace
 }  // namespace eco::detail

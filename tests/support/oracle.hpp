@@ -34,6 +34,19 @@ struct ScanAttributes {
   std::vector<double> times;
 };
 
+/// A test scan with per-point attributes, as the tree and the oracle take it.
+struct AttributedScan {
+  std::vector<Eigen::Vector3f> points;
+  ScanAttributes attributes;
+  [[nodiscard]] ScanView view() const {
+    ScanView v(points);
+    v.ids = attributes.ids.data();
+    v.intensities = attributes.intensities.data();
+    v.times = attributes.times.data();
+    return v;
+  }
+};
+
 class Oracle {
  public:
   explicit Oracle(const Config& config, Memory memory = Memory::TheBox) : cfg_(config), memory_(memory) {}
