@@ -112,7 +112,7 @@ class Tree {
   /// into free ones below, kCompactionBudget bytes an update at most, and the pages behind them
   /// are released. No point changes, only where it lies.
   void give_back_memory(std::size_t floor = kMemoryFloor);
-  static constexpr std::size_t kFreeShare = 8;                        // an eighth
+  static constexpr std::size_t kFreeShare = 16;                       // a sixteenth
   static constexpr std::size_t kMemoryFloor = std::size_t{1} << 20;   // below, not worth it
   static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
 
