@@ -166,7 +166,9 @@ class KnnSearch {
     int octants[8];
     int m = 0;
     for (int o = 0; o < 8; ++o) {
-      if (t_.nodes().child(id, o) == detail::kNone) continue;
+      const std::uint32_t ch = t_.nodes().child(id, o);
+      if (ch == detail::kNone) continue;
+      t_.nodes().prefetch(ch);  // read below unless its cell is pruned: the misses overlap
       gaps[m] = gap[0][std::size_t(o & 1)] + gap[1][std::size_t(o >> 1 & 1)] + gap[2][std::size_t(o >> 2)];
       octants[m++] = o;
     }
