@@ -153,8 +153,7 @@ class PointStore {
   void release(std::uint32_t& link) {
     if (link == kNone) return;
     Pool& p = pools_[std::size_t(class_of(link))];
-    p.free.push_back(index_of(link));
-    p.owners[index_of(link)] = kNone;
+    p.free.push_back(index_of(link));  // its owner is left as it was: compact() asks whether it still holds it
     link = kNone;
   }
 
@@ -163,14 +162,16 @@ class PointStore {
     std::size_t total = pools_.capacity() * sizeof(Pool);
     for (const Pool& p : pools_) {
       total += p.pages.size() * p.page_bytes + p.pages.capacity() * sizeof(p.pages[0]) +
-               (p.free.capacity() + p.owners.capacity()) * sizeof(std::uint32_t);
+               p.free.capacity() * sizeof(std::uint32_t);
     }
     return total;
   }
 
-  /// The node the block at `link` (not kNone) was handed to.
+  /// The node the block at `link` (not kNone) was last handed to.
   [[nodiscard]] std::uint32_t owner_of(std::uint32_t link) const {
-    return pools_[std::size_t(class_of(link))].owners[index_of(link)];
+    std::uint32_t owner;
+    std::memcpy(&owner, address(link), sizeof owner);
+    return owner;
   }
 
   /// Bytes of the blocks the pools hold free (compact() gives most of them back).
@@ -182,16 +183,19 @@ class PointStore {
 
   /// Moves the live blocks at the top of each pool into free ones below, from the top down, and
   /// releases the pages emptied behind them, as a map that shrank needs; stops once it has moved
-  /// `budget` bytes, so that no update pays for all at once. relink(owner, link) hands each moved
-  /// block's owner its new link. Returns the bytes moved.
-  template <class Relink>
-  std::size_t compact(std::size_t budget, Relink&& relink) {
+  /// `budget` bytes, so that no update pays for all at once. holds(owner, link) says whether the
+  /// node a block was last handed to still holds it (else the block is free); relink(owner, link)
+  /// hands each moved block's owner its new link. Returns the bytes moved.
+  template <class Holds, class Relink>
+  std::size_t compact(std::size_t budget, Holds&& holds, Relink&& relink) {
     std::size_t moved = 0;
     for (std::size_t c = 0; c < pools_.size(); ++c) {
       Pool& p = pools_[c];
       while (p.used > 0 && moved < budget) {
         const std::uint32_t top = p.used - 1;
-        if (p.owners[top] == kNone) {  // free: dropped where it lies
+        const std::uint32_t from_link = std::uint32_t(c) << kIndexBits | top;
+        const std::uint32_t owner = owner_of(from_link);
+        if (!holds(owner, from_link)) {  // free: dropped where it lies
           --p.used;
           continue;
         }
@@ -199,20 +203,16 @@ class PointStore {
         if (p.free.empty()) break;
         const std::uint32_t to = p.free.back();
         p.free.pop_back();
-        const std::uint32_t from_link = std::uint32_t(c) << kIndexBits | top;
         const std::uint32_t to_link = std::uint32_t(c) << kIndexBits | to;
-        std::memcpy(address(to_link), address(from_link), p.block_bytes);
-        p.owners[to] = p.owners[top];
-        relink(p.owners[top], to_link);
+        std::memcpy(address(to_link), address(from_link), p.block_bytes);  // its owner too
+        relink(owner, to_link);
         --p.used;
         moved += p.block_bytes;
       }
       std::erase_if(p.free, [&](std::uint32_t i) { return i >= p.used; });
-      p.owners.resize(p.used);
       p.pages.resize((std::size_t(p.used) + (std::size_t{1} << p.per_page_shift) - 1) >> p.per_page_shift);
       if (4 * p.pages.size() < p.pages.capacity()) p.pages.shrink_to_fit();
       if (4 * p.free.size() < p.free.capacity()) p.free.shrink_to_fit();
-      if (4 * p.owners.size() < p.owners.capacity()) p.owners.shrink_to_fit();
     }
     return moved;
   }
@@ -251,7 +251,6 @@ class PointStore {
     std::vector<std::unique_ptr<std::byte[]>> pages;
     std::uint32_t used = 0;  // blocks handed out so far, free or not
     std::vector<std::uint32_t> free;
-    std::vector<std::uint32_t> owners;  // per block handed out: its node, kNone while free
   };
   struct Block {
     float* x;
@@ -265,6 +264,8 @@ class PointStore {
   static int class_of(std::uint32_t link) { return int(link >> kIndexBits); }
   static std::uint32_t index_of(std::uint32_t link) { return link & kIndexMask; }
 
+  /// A block starts with the node it was last handed to (compact() asks it), then its columns.
+  static constexpr std::size_t kOwnerBytes = sizeof(std::uint32_t);
   /// Where the block at `link` starts.
   [[nodiscard]] std::byte* address(std::uint32_t link) const {
     const Pool& p = pools_[std::size_t(class_of(link))];
@@ -273,7 +274,7 @@ class PointStore {
   }
   [[nodiscard]] Block block(std::uint32_t link) const {
     const int c = class_of(link);
-    std::byte* at = address(link);
+    std::byte* at = address(link) + kOwnerBytes;
     const std::uint32_t cap = capacity_of(c);
     std::byte* column = at + 3 * sizeof(float) * cap;  // the kept columns follow x, y, z in order
     auto next = [&]<class T>(bool kept, T*) -> T* {
@@ -332,7 +333,7 @@ class PointStore {
     if (pools_.size() <= std::size_t(c)) pools_.resize(std::size_t(c) + 1);
     Pool& p = pools_[std::size_t(c)];
     if (p.block_bytes == 0) {
-      p.block_bytes = std::size_t(capacity_of(c)) * std::size_t(3 + columns_.count()) * sizeof(float);
+      p.block_bytes = kOwnerBytes + std::size_t(capacity_of(c)) * std::size_t(3 + columns_.count()) * sizeof(float);
       while ((p.block_bytes << (p.per_page_shift + 1)) <= kPageBytes) ++p.per_page_shift;
       p.page_bytes = p.block_bytes << p.per_page_shift;
     }
@@ -346,10 +347,10 @@ class PointStore {
         p.pages.push_back(std::make_unique_for_overwrite<std::byte[]>(p.page_bytes));
       }
       i = p.used++;
-      p.owners.push_back(kNone);
     }
-    p.owners[i] = owner;
-    return std::uint32_t(c) << kIndexBits | i;
+    const std::uint32_t link = std::uint32_t(c) << kIndexBits | i;
+    std::memcpy(address(link), &owner, sizeof owner);  // in the block's first line, written next anyway
+    return link;
   }
 
   Columns columns_;

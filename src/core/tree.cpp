@@ -263,7 +263,10 @@ void trim(std::vector<T>& buffer, std::size_t used) {
 void Tree::give_back_memory(std::size_t floor) {
   const std::size_t free = points_.free_bytes();
   if (free == 0 || free < floor || free * kFreeShare < points_.bytes()) return;
-  points_.compact(kCompactionBudget, [&](std::uint32_t owner, std::uint32_t link) { nodes_[owner].link = link; });
+  const auto holds = [&](std::uint32_t owner, std::uint32_t link) {
+    return owner < nodes_.id_bound() && nodes_[owner].leaf && nodes_[owner].link == link;
+  };
+  points_.compact(kCompactionBudget, holds, [&](std::uint32_t owner, std::uint32_t link) { nodes_[owner].link = link; });
 }
 
 void Tree::trim_buffers(std::size_t used) {

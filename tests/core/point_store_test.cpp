@@ -99,7 +99,8 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndRelea
         break;
       case 3:  // now and then, blocks move to the pools' front: every leaf keeps its points
         if (rng() % 16 == 0) {
-          store.compact(std::size_t(rng() % 20000), [&](std::uint32_t owner, std::uint32_t moved) {
+          const auto holds = [&](std::uint32_t owner, std::uint32_t l) { return owner < kLeaves && links[owner] == l; };
+          store.compact(std::size_t(rng() % 20000), holds, [&](std::uint32_t owner, std::uint32_t moved) {
             ASSERT_LT(owner, std::uint32_t(kLeaves));
             links[owner] = moved;
           });
@@ -174,7 +175,9 @@ TEST(PointStore, CompactionGivesBackThePagesAShrunkMapEmptiedWithinItsBudget) {
   const auto all_held = [&] {
     for (std::size_t i = 0; i < links.size(); ++i) {
       ASSERT_TRUE(same(contents(store, links[i], std::uint32_t(model[i].size())), model[i])) << "leaf " << i;
-      if (links[i] != kNone) ASSERT_EQ(store.owner_of(links[i]), owner(i));
+      if (links[i] != kNone) {
+        ASSERT_EQ(store.owner_of(links[i]), owner(i));
+      }
     }
   };
   for (std::size_t i = 0; i < links.size(); ++i) {  // blocks of many sizes, interleaved
@@ -191,12 +194,13 @@ TEST(PointStore, CompactionGivesBackThePagesAShrunkMapEmptiedWithinItsBudget) {
     }
   }
   EXPECT_GT(store.free_bytes(), full / 2);
+  const auto holds = [&](std::uint32_t o, std::uint32_t link) { return o - 1000 < links.size() && links[o - 1000] == link; };
   const auto relink = [&](std::uint32_t o, std::uint32_t link) { links[o - 1000] = link; };
   constexpr std::size_t kBudget = 20000;
   std::size_t calls = 0;
   for (std::size_t moved = 1; moved > 0; ++calls) {  // as updates would: a budget at a time
     const std::size_t before = store.bytes();
-    moved = store.compact(kBudget, relink);
+    moved = store.compact(kBudget, holds, relink);
     EXPECT_LE(moved, kBudget + 4096) << "one block past the budget at most";
     EXPECT_LE(store.bytes(), before);
     all_held();
