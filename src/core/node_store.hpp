@@ -22,9 +22,7 @@ struct Node {
   std::uint8_t depth = 0;
   std::uint8_t octant = 0;       // which child of its parent
   bool leaf = true;
-  bool released = false;         // a free slot (NodeStore::compact skips it)
 };
-static_assert(sizeof(Node) == 44, "a node's flags fit in its padding");
 
 /// Eight child slots of an inner node; kNone marks an empty octant.
 struct ChildBlock {
@@ -65,7 +63,6 @@ class NodeStore {
     if (!n.leaf) free_blocks_.push_back(n.link);
     n.leaf = true;
     n.link = kNone;
-    n.released = true;
     free_nodes_.push_back(id);
     --live_;
   }
@@ -85,36 +82,6 @@ class NodeStore {
       if (ch != kNone) __builtin_prefetch(&nodes_[ch]);
     }
   }
-
-  /// Moves the live nodes at the top of the store into free slots below, from the top down, at
-  /// most `budget` of them, and forgets the slots emptied behind them, as a map that shrank needs;
-  /// moved(from, to) is told each move (node `to` now holds what `from` held), for the links to
-  /// it to follow. The storage shrinks once it is far above the nodes left. Returns the moves.
-  template <class Moved>
-  std::size_t compact(std::size_t budget, Moved&& moved) {
-    std::size_t moves = 0;
-    while (!nodes_.empty() && moves < budget) {
-      const auto top = std::uint32_t(nodes_.size() - 1);
-      if (nodes_[top].released) {
-        nodes_.pop_back();
-        continue;
-      }
-      while (!free_nodes_.empty() && free_nodes_.back() >= top) free_nodes_.pop_back();  // above the top: gone
-      if (free_nodes_.empty()) break;
-      const std::uint32_t to = free_nodes_.back();
-      free_nodes_.pop_back();
-      nodes_[to] = nodes_[top];
-      nodes_.pop_back();
-      moved(top, to);
-      ++moves;
-    }
-    std::erase_if(free_nodes_, [&](std::uint32_t id) { return id >= nodes_.size(); });
-    if (nodes_.capacity() > nodes_.size() + nodes_.size() / 4 + 64) nodes_.shrink_to_fit();
-    if (4 * free_nodes_.size() < free_nodes_.capacity()) free_nodes_.shrink_to_fit();
-    return moves;
-  }
-  /// Bytes of the free node slots.
-  [[nodiscard]] std::size_t free_bytes() const { return (nodes_.size() - live_) * sizeof(Node); }
 
   [[nodiscard]] std::size_t live() const { return live_; }
   /// Every node's id is below this.

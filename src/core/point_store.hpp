@@ -174,9 +174,6 @@ class PointStore {
     return owner;
   }
 
-  /// Names `owner` as the node holding the block at `link` (not kNone): the node moved.
-  void reown(std::uint32_t link, std::uint32_t owner) { std::memcpy(address(link), &owner, sizeof owner); }
-
   /// Bytes of the blocks the pools hold free (compact() gives most of them back).
   [[nodiscard]] std::size_t free_bytes() const {
     std::size_t total = 0;
@@ -352,7 +349,7 @@ class PointStore {
       i = p.used++;
     }
     const std::uint32_t link = std::uint32_t(c) << kIndexBits | i;
-    reown(link, owner);  // in the block's first line, written next anyway
+    std::memcpy(address(link), &owner, sizeof owner);  // in the block's first line, written next anyway
     return link;
   }
 

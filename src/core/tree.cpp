@@ -261,42 +261,12 @@ void trim(std::vector<T>& buffer, std::size_t used) {
 }  // namespace
 
 void Tree::give_back_memory(std::size_t floor) {
-  const auto worth = [&](std::size_t free, std::size_t held) {
-    return free > 0 && free >= floor && free * kFreeShare >= held;
+  const std::size_t free = points_.free_bytes();
+  if (free == 0 || free < floor || free * kFreeShare < points_.bytes()) return;
+  const auto holds = [&](std::uint32_t owner, std::uint32_t link) {
+    return owner < nodes_.id_bound() && nodes_[owner].leaf && nodes_[owner].link == link;
   };
-  if (worth(points_.free_bytes(), points_.bytes())) {
-    const auto holds = [&](std::uint32_t owner, std::uint32_t link) {
-      return owner < nodes_.id_bound() && nodes_[owner].leaf && nodes_[owner].link == link;
-    };
-    points_.compact(kCompactionBudget, holds, [&](std::uint32_t owner, std::uint32_t link) { nodes_[owner].link = link; });
-  }
-  if (worth(nodes_.free_bytes(), nodes_.bytes())) {
-    nodes_.compact(kNodeMoves, [&](std::uint32_t from, std::uint32_t to) { follow_moved_node(from, to); });
-  }
-}
-
-void Tree::follow_moved_node(std::uint32_t from, std::uint32_t to) {
-  const Node& n = nodes_[to];
-  if (n.parent == kNone) {
-    assert(root_ == from);
-    root_ = to;
-  } else {
-    nodes_.child(n.parent, n.octant) = to;
-  }
-  if (!n.leaf) {
-    for (int o = 0; o < 8; ++o) {
-      if (const std::uint32_t ch = nodes_.child(to, o); ch != kNone) nodes_[ch].parent = to;
-    }
-  } else if (n.link != kNone) {
-    points_.reown(n.link, to);
-  }
-  if (int(n.depth) != start_.depth) return;
-  for (std::uint32_t& slot : start_.slots) {  // at most 8^4
-    if (slot == from) {
-      slot = to;
-      return;
-    }
-  }
+  points_.compact(kCompactionBudget, holds, [&](std::uint32_t owner, std::uint32_t link) { nodes_[owner].link = link; });
 }
 
 void Tree::trim_buffers(std::size_t used) {

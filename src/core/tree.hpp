@@ -107,16 +107,14 @@ class Tree {
   /// Counts the density cells of `held` anew (after the precision origin moved, their keys did).
   void recount_density(const std::vector<StoredPoint>& held);
 
-  /// Gives back the memory a map that shrank holds free, in each part where it is at least a
-  /// kFreeShare of it and `floor` bytes: the point pools' live blocks at the top move into free
-  /// ones below (kCompactionBudget bytes an update at most) and the pages behind them are
-  /// released; the live nodes at the top move into free slots below (kNodeMoves an update at
-  /// most) and the node storage shrinks. No point or node changes, only where it lies.
+  /// Gives back the memory a map that shrank holds in its point pools' free blocks, while it is
+  /// at least a kFreeShare of them and `floor` bytes: the live blocks at the top of each pool move
+  /// into free ones below, kCompactionBudget bytes an update at most, and the pages behind them
+  /// are released. No point changes, only where it lies.
   void give_back_memory(std::size_t floor = kMemoryFloor);
   static constexpr std::size_t kFreeShare = 16;                       // a sixteenth
   static constexpr std::size_t kMemoryFloor = std::size_t{1} << 20;   // below, not worth it
   static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
-  static constexpr std::size_t kNodeMoves = 8192;
 
   // --- insertion --------------------------------------------------------------------------------
   /// Inserts every point of `batch` (each in the root cell), reordering it: the points are
@@ -282,8 +280,6 @@ class Tree {
   std::int64_t start_slot(const Cell& cell) const;
   /// The start-depth cell whose slot is `slot` (start_slot's inverse).
   [[nodiscard]] Cell start_cell(std::uint32_t slot) const;
-  /// Points the links to node `from` at `to`, which now holds what it held (give_back_memory).
-  void follow_moved_node(std::uint32_t from, std::uint32_t to);
   /// Gives back the working buffers' memory when it is far above the `used` points a frame needs
   /// now (a first frame that took a whole map in), so they keep what steady frames use.
   void trim_buffers(std::size_t used);

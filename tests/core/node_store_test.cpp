@@ -85,47 +85,5 @@ TEST(NodeStore, ReleasedIdsAreReusedAndLiveIdsNeverCollide) {
   EXPECT_EQ(nodes.bytes(), bytes);
 }
 
-TEST(NodeStore, CompactionMovesLiveNodesDownWithinItsBudgetAndForgetsTheFreeSlots) {
-  NodeStore nodes;
-  std::mt19937 rng(3);
-  std::vector<std::uint32_t> ids;  // by tag: the node's id, as the moves tell it
-  for (std::uint32_t tag = 0; tag < 30000; ++tag) {
-    const std::uint32_t id = nodes.make_leaf(kNone, int(tag % 8), int(tag % 20));
-    nodes[id].count = tag;
-    ids.push_back(id);
-  }
-  std::vector<bool> live(ids.size(), true);
-  for (std::uint32_t tag = 0; tag < ids.size(); ++tag) {  // a map that shrank: most leave
-    if (rng() % 5 != 0) {
-      nodes.release(ids[tag]);
-      live[tag] = false;
-    }
-  }
-  const std::size_t bytes = nodes.bytes(), kept = nodes.live();
-  ASSERT_GT(nodes.free_bytes(), bytes / 2);
-  std::size_t calls = 0;
-  for (std::size_t moves = 1; moves > 0; ++calls) {
-    moves = nodes.compact(1000, [&](std::uint32_t from, std::uint32_t to) {
-      const std::uint32_t tag = nodes[to].count;
-      ASSERT_TRUE(live[tag]) << "a free slot moved";
-      ASSERT_EQ(ids[tag], from);
-      ids[tag] = to;
-    });
-    ASSERT_LE(moves, 1000u);
-    ASSERT_EQ(nodes.live(), kept);
-    for (std::uint32_t tag = 0; tag < ids.size(); ++tag) {
-      if (!live[tag]) continue;
-      ASSERT_LT(ids[tag], nodes.id_bound());
-      ASSERT_EQ(nodes[ids[tag]].count, tag);
-      ASSERT_FALSE(nodes[ids[tag]].released);
-    }
-  }
-  EXPECT_GT(calls, 3u);
-  EXPECT_EQ(nodes.id_bound(), kept) << "every free slot forgotten";
-  EXPECT_EQ(nodes.free_bytes(), 0u);
-  EXPECT_LT(nodes.bytes(), bytes / 3);
-  EXPECT_EQ(nodes.make_leaf(kNone, 0, 0), kept) << "fresh ids come after the live ones";
-}
-
 }  // namespace
 }  // namespace eco::detail
