@@ -183,20 +183,22 @@ class PointStore {
 
   /// Moves the live blocks at the top of each pool into free ones below, from the top down, and
   /// releases the pages emptied behind them, as a map that shrank needs; stops once it has moved
-  /// `budget` bytes, so that no update pays for all at once. holds(owner, link) says whether the
-  /// node a block was last handed to still holds it (else the block is free); relink(owner, link)
-  /// hands each moved block's owner its new link. Returns the bytes moved.
+  /// or dropped `budget` bytes of blocks, so that no update pays for all at once (each block read,
+  /// each page released costs). holds(owner, link) says whether the node a block was last handed
+  /// to still holds it (else the block is free); relink(owner, link) hands each moved block's
+  /// owner its new link. Returns the bytes of blocks moved or dropped.
   template <class Holds, class Relink>
   std::size_t compact(std::size_t budget, Holds&& holds, Relink&& relink) {
-    std::size_t moved = 0;
+    std::size_t done = 0;
     for (std::size_t c = 0; c < pools_.size(); ++c) {
       Pool& p = pools_[c];
-      while (p.used > 0 && moved < budget) {
+      while (p.used > 0 && done < budget) {
         const std::uint32_t top = p.used - 1;
         const std::uint32_t from_link = std::uint32_t(c) << kIndexBits | top;
         const std::uint32_t owner = owner_of(from_link);
         if (!holds(owner, from_link)) {  // free: dropped where it lies
           --p.used;
+          done += p.block_bytes;
           continue;
         }
         while (!p.free.empty() && p.free.back() >= top) p.free.pop_back();  // above the top: gone
@@ -207,14 +209,14 @@ class PointStore {
         std::memcpy(address(to_link), address(from_link), p.block_bytes);  // its owner too
         relink(owner, to_link);
         --p.used;
-        moved += p.block_bytes;
+        done += p.block_bytes;
       }
       std::erase_if(p.free, [&](std::uint32_t i) { return i >= p.used; });
       p.pages.resize((std::size_t(p.used) + (std::size_t{1} << p.per_page_shift) - 1) >> p.per_page_shift);
       if (4 * p.pages.size() < p.pages.capacity()) p.pages.shrink_to_fit();
       if (4 * p.free.size() < p.free.capacity()) p.free.shrink_to_fit();
     }
-    return moved;
+    return done;
   }
 
   /// Points a block of size class c holds: 2, 3, 4, 5, 6, 8, 10, 12, 16, 20, 24, 32, ... (steps

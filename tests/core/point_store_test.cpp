@@ -198,10 +198,10 @@ TEST(PointStore, CompactionGivesBackThePagesAShrunkMapEmptiedWithinItsBudget) {
   const auto relink = [&](std::uint32_t o, std::uint32_t link) { links[o - 1000] = link; };
   constexpr std::size_t kBudget = 20000;
   std::size_t calls = 0;
-  for (std::size_t moved = 1; moved > 0; ++calls) {  // as updates would: a budget at a time
+  for (std::size_t done = 1; done > 0; ++calls) {  // as updates would: a budget at a time
     const std::size_t before = store.bytes();
-    moved = store.compact(kBudget, holds, relink);
-    EXPECT_LE(moved, kBudget + 4096) << "one block past the budget at most";
+    done = store.compact(kBudget, holds, relink);
+    EXPECT_LE(done, kBudget + 4096) << "one block past the budget at most";
     EXPECT_LE(store.bytes(), before);
     all_held();
     if (HasFatalFailure()) return;
