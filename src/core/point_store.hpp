@@ -1,9 +1,10 @@
 #pragma once
 // Leaf point buckets: each leaf's points lie in one contiguous structure-of-arrays block (x[], y[],
 // z[], then one array per kept column: stamps, ids, intensities, times), so a leaf is read front
-// to back with no pointer chase. Blocks come in size classes growing by about 1.5x; each class is
-// a pool of fixed-size pages with a free list, so growing a pool never moves or copies what it
-// holds.
+// to back with no pointer chase. Blocks come in size classes growing by about 1.2-1.33x; each class
+// is a pool of fixed-size pages with a free list, so growing a pool never moves or copies what it
+// holds. A block begins with the id of the leaf it was last handed to, so that a map that shrank
+// can move its blocks down and give the emptied pages back (compact()).
 
 #include "core/node_store.hpp"
 
@@ -99,9 +100,6 @@ class PointStore {
       assert(columns_.count() == 0);
     }
   }
-  void push(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const StoredPoint& s) {
-    append(link, owner, count, &s, &s + 1);
-  }
 
   /// The `count` points of the block at `link`.
   [[nodiscard]] PointSpan span(std::uint32_t link, std::uint32_t count) const {
@@ -152,8 +150,8 @@ class PointStore {
 
   void release(std::uint32_t& link) {
     if (link == kNone) return;
-    Pool& p = pools_[std::size_t(class_of(link))];
-    p.free.push_back(index_of(link));  // its owner is left as it was: compact() asks whether it still holds it
+    // the owner named in the block is left as it was: compact() asks whether it still holds it
+    pools_[std::size_t(class_of(link))].free.push_back(index_of(link));
     link = kNone;
   }
 
