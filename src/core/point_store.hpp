@@ -119,7 +119,7 @@ class PointStore {
   /// Keeps the points for which keep(const StoredPoint&) holds, in order; returns how many.
   /// A block left far larger than its points moves to a smaller one; an empty one is released.
   template <class Keep>
-  std::uint32_t retain(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, Keep&& keep) {
+  std::uint32_t retain(std::uint32_t& link, std::uint32_t count, Keep&& keep) {
     if (link == kNone) return 0;
     Block b = block(link);
     std::uint32_t kept = 0;
@@ -130,7 +130,7 @@ class PointStore {
     if (kept == 0) {
       release(link);
     } else if (class_for(kept) + 1 < class_of(link)) {
-      move_to(link, owner, kept, class_for(kept));
+      move_to(link, owner_of(link), kept, class_for(kept));  // the same leaf's
     }
     return kept;
   }
@@ -309,6 +309,7 @@ class PointStore {
 
   /// Makes the block at `link` (holding `count`, of node `owner`) hold at least `needed` points.
   void reserve(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, std::uint32_t needed) {
+    assert(link == kNone || owner_of(link) == owner);
     if (link != kNone && capacity_of(class_of(link)) >= needed) return;
     move_to(link, owner, count, class_for(needed));
   }

@@ -468,7 +468,7 @@ void Tree::drop(std::uint32_t id, UpdateStats& stats) {
 
 void Tree::filter_leaf(std::uint32_t id, const Box& box, UpdateStats& stats) {
   Node& n = nodes_[id];
-  n.count = points_.retain(n.link, id, n.count, [&](const StoredPoint& s) { return keeps(s, box, stats); });
+  n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) { return keeps(s, box, stats); });
   refit(id);
 }
 

@@ -187,7 +187,7 @@ class Tree {
   template <class Keep>
   void retain(std::uint32_t id, Keep&& keep) {
     Node& n = nodes_[id];
-    n.count = points_.retain(n.link, id, n.count, [&](const StoredPoint& s) {
+    n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) {
       if (keep(s)) return true;
       forget(s);
       return false;

@@ -78,7 +78,7 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndRelea
     switch (rng() % 8) {
       case 0: {  // retain: drop points below a random x
         const float cut = coord(rng);
-        const std::uint32_t left = store.retain(link, std::uint32_t(leaf), count, [&](const StoredPoint& s) { return s.p[0] >= cut; });
+        const std::uint32_t left = store.retain(link, count, [&](const StoredPoint& s) { return s.p[0] >= cut; });
         std::erase_if(expected, [&](const StoredPoint& s) { return s.p[0] < cut; });
         ASSERT_EQ(left, expected.size());
         ASSERT_EQ(link == kNone, left == 0);
