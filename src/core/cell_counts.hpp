@@ -21,7 +21,7 @@ namespace eco::detail {
 class CellCounts {
  public:
   /// Keys add_below_each judges together.
-  static constexpr std::size_t kMaxKeys = 64;
+  static constexpr std::size_t kMaxKeys = 64;  // the open ones are one word's bits
   static constexpr int kAxisBits = 18;
   static constexpr std::uint32_t kMaxCount = (1u << 10) - 1;
 
@@ -96,11 +96,10 @@ class CellCounts {
     while (4 * (used_ + n) > 3 * slots_.size()) grow();
     std::uint64_t* const slots = slots_.data();
     const std::size_t last = slots_.size() - 1;
-    std::array<std::uint32_t, kMaxKeys> open;
-    const std::size_t left = refuse_full_near_home(slots, last, shift_, keys, n, limit, passed, open.data());
     std::size_t used = used_;
-    for (std::size_t j = 0; j < left; ++j) {
-      const std::size_t k = open[j];
+    for (std::uint64_t open = refuse_full_near_home(slots, last, shift_, keys, n, limit, passed); open != 0;
+         open &= open - 1) {
+      const auto k = std::size_t(std::countr_zero(open));
       const std::uint64_t key = keys[k];
       const std::size_t i = probe(slots, last, home(key), key);
       const std::uint32_t count = count_of(slots[i]);
@@ -113,12 +112,13 @@ class CellCounts {
     }
     used_ = used;
   }
-  /// Sets passed[k] = 0 for the keys[k] (k < n <= kMaxKeys) whose cell holds `limit` points or
-  /// more in their home slot or the next (of `slots`, size last + 1); lists the other k, in order,
-  /// in open[]. Returns how many it listed. (src/core/cell_counts.cpp: vector code.)
-  static std::size_t refuse_full_near_home(const std::uint64_t* slots, std::size_t last, int shift,
-                                           const std::uint64_t* keys, std::size_t n, std::uint32_t limit,
-                                           std::uint8_t* passed, std::uint32_t* open);
+  /// Sets passed[0, n) = 0 (n <= kMaxKeys); returns the keys[k] left open as bit k: those whose
+  /// cell does not hold `limit` points or more in their home slot or the next (of `slots`, size
+  /// last + 1). (src/core/cell_counts.cpp: vector code; the caller visits only the set bits,
+  /// a few of a group's 64 under a cap.)
+  static std::uint64_t refuse_full_near_home(const std::uint64_t* slots, std::size_t last, int shift,
+                                             const std::uint64_t* keys, std::size_t n, std::uint32_t limit,
+                                             std::uint8_t* passed);
   static constexpr std::uint64_t kCountMask = (std::uint64_t{1} << kCountBits) - 1;
 
   static std::uint64_t key_of(std::uint64_t slot) { return slot >> kCountBits; }
