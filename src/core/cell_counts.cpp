@@ -19,14 +19,14 @@ std::uint64_t CellCounts::refuse_full_near_home(const std::uint64_t* slots, std:
                            ((key_of(next) == keys[k]) & (count_of(next) >= limit)));
   }
   std::fill(passed, passed + n, std::uint8_t{0});
-  // the open keys as bits, eight verdicts a multiply: byte b of `eight` (0 or 1) lands on bit b
+  // the open keys as bits, eight verdicts a multiply
   std::fill(full.begin() + std::ptrdiff_t(n), full.end(), std::uint8_t{1});
   std::uint64_t open = 0;
   for (std::size_t w = 0; w < kMaxKeys / 8; ++w) {
     std::uint64_t eight;
     std::memcpy(&eight, full.data() + 8 * w, sizeof eight);
     eight ^= 0x0101010101010101ull;
-    open |= ((eight * 0x0102040810204080ull) >> 56) << (8 * w);
+    open |= std::uint64_t(verdict_bits(eight)) << (8 * w);
   }
   return open;
 }

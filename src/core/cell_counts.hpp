@@ -18,6 +18,10 @@
 
 namespace eco::detail {
 
+/// Eight verdicts (bytes 0 or 1, the first lowest) as eight bits, byte b on bit b: one multiply
+/// moves each byte's bit to a distinct place in the top byte.
+inline unsigned verdict_bits(std::uint64_t eight) { return unsigned((eight * 0x0102040810204080ull) >> 56); }
+
 class CellCounts {
  public:
   /// Keys add_below_each judges together.

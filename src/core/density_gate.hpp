@@ -67,8 +67,7 @@ void for_each_passed(const std::uint8_t* passed, std::size_t n, Take&& take) {
     std::uint64_t eight;
     std::memcpy(&eight, passed + i, sizeof eight);
     if (eight == 0) continue;
-    // byte b of `eight` lands on bit b
-    for (auto bits = unsigned((eight * 0x0102040810204080ull) >> 56); bits != 0; bits &= bits - 1) {
+    for (unsigned bits = verdict_bits(eight); bits != 0; bits &= bits - 1) {
       take(i + std::size_t(std::countr_zero(bits)));
     }
   }

@@ -80,6 +80,14 @@ TEST(CellCounts, GroupedAddsAreTheMapsKeyAfterKey) {
   for (const auto& [key, n] : expected) ASSERT_EQ(counts.count(key), n);
 }
 
+TEST(CellCounts, EightVerdictsBecomeTheirBitsInOrder) {
+  for (unsigned pattern = 0; pattern < 256; ++pattern) {
+    std::uint64_t eight = 0;  // byte b is bit b of the pattern
+    for (int b = 0; b < 8; ++b) eight |= std::uint64_t((pattern >> b) & 1u) << (8 * b);
+    ASSERT_EQ(verdict_bits(eight), pattern) << "pattern " << pattern;
+  }
+}
+
 TEST(CellCounts, KeysWrapModulo2To18PerAxis) {
   EXPECT_EQ(CellCounts::key({-1, 0, 0}), CellCounts::key({(1 << 18) - 1, 0, 0}));
   EXPECT_NE(CellCounts::key({1, 0, 0}), CellCounts::key({0, 1, 0}));
