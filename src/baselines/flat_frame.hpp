@@ -59,7 +59,7 @@ class FlatFrame {
       std::array<std::uint8_t, detail::kAdmitGroup> passed;
       step.stats.skipped_by_density +=
           detail::judge_group(density_, density_grid_, cfg_.density_cap, group.points.data(), group.size, passed.data());
-      detail::for_each_passed(passed.data(), group.size, [&](std::size_t j) { take(group.points[j]); });
+      detail::for_each_set(passed.data(), group.size, [&](std::size_t j) { take(group.points[j]); });
     });
   }
   /// Counts a held point (after the origin moved) or forgets one that left.

@@ -50,9 +50,13 @@ class CellCounts {
     }
   }
 
-  /// Starts loading the slot where `key`'s probe begins (a hint: no effect on the counts).
-  void prefetch(std::uint64_t key) const {
-    if (!slots_.empty()) __builtin_prefetch(&slots_[home(key)]);
+  /// Starts loading the slots where the probes of keys[0, n) begin (a hint: no effect on the
+  /// counts); the table's address and shift read once, not once a key.
+  void prefetch_each(const std::uint64_t* keys, std::size_t n) const {
+    if (slots_.empty()) return;
+    const std::uint64_t* const slots = slots_.data();
+    const int shift = shift_;
+    for (std::size_t i = 0; i < n; ++i) __builtin_prefetch(slots + home(keys[i], shift));
   }
 
   /// Counts one point in `key`'s cell, whatever it holds already.

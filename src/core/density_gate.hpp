@@ -32,15 +32,32 @@ inline constexpr std::size_t kDensityGroup = 64;
 void guess_cell_keys(const WorldGrid& grid, const std::array<float, 3>* points, std::size_t n, std::uint64_t* keys,
                      std::uint8_t* unsure);
 
+/// Calls take(i) for each i < n whose flag[i] (0 or 1) is 1, in order: eight flags a word, since
+/// most words are clear (a cap refuses most points; few keys are unsure), and a set word's bits
+/// visited alone.
+template <class Take>
+void for_each_set(const std::uint8_t* flag, std::size_t n, Take&& take) {
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    std::uint64_t eight;
+    std::memcpy(&eight, flag + i, sizeof eight);
+    if (eight == 0) continue;
+    for (unsigned bits = verdict_bits(eight); bits != 0; bits &= bits - 1) {
+      take(i + std::size_t(std::countr_zero(bits)));
+    }
+  }
+  for (; i < n; ++i) {
+    if (flag[i] != 0) take(i);
+  }
+}
+
 /// Finds the cells of points[0, n) (their keys) and starts loading their slots.
 inline void find_cells(const CellCounts& counts, const WorldGrid& grid, const std::array<float, 3>* points,
                        std::uint64_t* keys, std::size_t n) {
   std::array<std::uint8_t, kDensityGroup> unsure;
   guess_cell_keys(grid, points, n, keys, unsure.data());
-  for (std::size_t i = 0; i < n; ++i) {
-    if (unsure[i] != 0) keys[i] = CellCounts::key(grid.index(points[i]));
-    counts.prefetch(keys[i]);
-  }
+  for_each_set(unsure.data(), n, [&](std::size_t i) { keys[i] = CellCounts::key(grid.index(points[i])); });
+  counts.prefetch_each(keys, n);
 }
 
 /// The density cap's verdicts on points[0, n) (stored coordinates, n <= kDensityGroup), in their
@@ -56,24 +73,6 @@ inline std::size_t judge_group(CellCounts& counts, const WorldGrid& grid, std::u
   std::size_t taken = 0;
   for (std::size_t i = 0; i < n; ++i) taken += passed[i];
   return n - taken;
-}
-
-/// Calls take(i) for each i < n whose verdict passed[i] (0 or 1) is 1, in order: eight verdicts
-/// a word, since under a cap most words refuse all eight, and the others' bits visited alone.
-template <class Take>
-void for_each_passed(const std::uint8_t* passed, std::size_t n, Take&& take) {
-  std::size_t i = 0;
-  for (; i + 8 <= n; i += 8) {
-    std::uint64_t eight;
-    std::memcpy(&eight, passed + i, sizeof eight);
-    if (eight == 0) continue;
-    for (unsigned bits = verdict_bits(eight); bits != 0; bits &= bits - 1) {
-      take(i + std::size_t(std::countr_zero(bits)));
-    }
-  }
-  for (; i < n; ++i) {
-    if (passed[i] != 0) take(i);
-  }
 }
 
 /// judge_group under `cap`; while the cap is off every point passes, counted nowhere.

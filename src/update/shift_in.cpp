@@ -77,7 +77,7 @@ std::size_t take_in(Tree& tree, const Motion& motion, ScanView scan, const Tree:
       // in scan order: the first points to reach a full cell are the ones kept
       std::array<std::uint8_t, kAdmitGroup> passed;
       stats.skipped_by_density += tree.judge_density(group.points.data(), group.size, passed.data());
-      for_each_passed(passed.data(), group.size, [&](std::size_t j) { insert(make(group.points[j], group.index[j])); });
+      for_each_set(passed.data(), group.size, [&](std::size_t j) { insert(make(group.points[j], group.index[j])); });
     });
   }, check);
 }

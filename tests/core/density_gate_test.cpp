@@ -217,7 +217,7 @@ TEST(DensityGate, WalksThePassedVerdictsInOrderAndNothingBeyondThem) {
       for (std::size_t i = 0; i < n; ++i) {
         if (passed[i] != 0) expected.push_back(i);
       }
-      for_each_passed(passed.data(), n, [&](std::size_t i) { got.push_back(i); });
+      for_each_set(passed.data(), n, [&](std::size_t i) { got.push_back(i); });
       EXPECT_EQ(got, expected) << n << " verdicts, density " << density;
     }
   }
