@@ -2,6 +2,7 @@
 
 #include "core/vector_clones.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 namespace eco::detail {
@@ -11,12 +12,23 @@ std::uint64_t CellCounts::refuse_full_near_home(const std::uint64_t* slots, std:
                                                 const std::uint64_t* keys, std::size_t n, std::uint32_t limit,
                                                 std::uint8_t* passed) {
   // A key found in a slot is that slot's cell wherever its probe run began (keys are unique).
+  // A key like its `limit` predecessors' (limit 1 or 2) is refused too: each of them was counted or
+  // found its cell full, so the cell holds `limit` by its turn. A scan lists a cell's points side
+  // by side, so under a cap this spares the probes of a cell new to the group.
+  std::array<std::uint64_t, kMaxKeys + 2> padded;  // keys[k] at k + 2, after two that are no key
+  padded[0] = ~std::uint64_t{0};
+  padded[1] = ~std::uint64_t{1};
+  std::copy(keys, keys + n, padded.begin() + 2);
+  const std::uint32_t after_one = limit == 1, after_two = limit == 2;
   std::array<std::uint8_t, kMaxKeys> full;
   for (std::size_t k = 0; k < n; ++k) {  // without branches: vector code
-    const std::size_t at = home(keys[k], shift);
+    const std::uint64_t key = padded[k + 2];
+    const std::size_t at = home(key, shift);
     const std::uint64_t here = slots[at], next = slots[(at + 1) & last];
-    full[k] = std::uint8_t(((key_of(here) == keys[k]) & (count_of(here) >= limit)) |
-                           ((key_of(next) == keys[k]) & (count_of(next) >= limit)));
+    const std::uint32_t repeats = padded[k + 1] == key, repeats_twice = repeats & (padded[k] == key);
+    full[k] = std::uint8_t(((key_of(here) == key) & (count_of(here) >= limit)) |
+                           ((key_of(next) == key) & (count_of(next) >= limit)) | (repeats & after_one) |
+                           (repeats_twice & after_two));
   }
   std::fill(passed, passed + n, std::uint8_t{0});
   // the open keys as bits, eight verdicts a multiply
