@@ -97,8 +97,8 @@ class CellCounts {
 
   /// add_below_each for n <= kMaxKeys keys. Room for n new cells is made first, so the loop tests
   /// no load per key. A cell full when the keys arrive stays full through them (none is emptied
-  /// here): the keys found full at or next to their home are refused in vector code, the others
-  /// probed one by one.
+  /// here): the keys found full at or next to their home, or whose cell their predecessors fill,
+  /// are refused in vector code, the others probed one by one.
   void add_below_some(const std::uint64_t* keys, std::size_t n, std::uint32_t limit, std::uint8_t* passed) {
     assert(n <= kMaxKeys);
     while (4 * (used_ + n) > 3 * slots_.size()) grow();
@@ -122,8 +122,9 @@ class CellCounts {
   }
   /// Sets passed[0, n) = 0 (n <= kMaxKeys); returns the keys[k] left open as bit k: those whose
   /// cell does not hold `limit` points or more in their home slot or the next (of `slots`, size
-  /// last + 1). (src/core/cell_counts.cpp: vector code; the caller visits only the set bits,
-  /// a few of a group's 64 under a cap.)
+  /// last + 1), and that do not repeat the key before them (limit 1) or the two before them
+  /// (limit 2). (src/core/cell_counts.cpp: vector code; the caller visits only the set bits, a
+  /// few of a group's 64 under a cap.)
   static std::uint64_t refuse_full_near_home(const std::uint64_t* slots, std::size_t last, int shift,
                                              const std::uint64_t* keys, std::size_t n, std::uint32_t limit,
                                              std::uint8_t* passed);
