@@ -8,6 +8,8 @@
 // (so at most 1023 points per cell) — in an open-addressing table with linear probing and
 // backward-shift deletion (no tombstones).
 
+#include "core/set_flags.hpp"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -17,10 +19,6 @@
 #include <vector>
 
 namespace eco::detail {
-
-/// Eight verdicts (bytes 0 or 1, the first lowest) as eight bits, byte b on bit b: one multiply
-/// moves each byte's bit to a distinct place in the top byte.
-inline unsigned verdict_bits(std::uint64_t eight) { return unsigned((eight * 0x0102040810204080ull) >> 56); }
 
 class CellCounts {
  public:

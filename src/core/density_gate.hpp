@@ -8,12 +8,12 @@
 
 #include "core/cell_counts.hpp"
 #include "core/geometry.hpp"
+#include "core/set_flags.hpp"
 
 #include <eco/config.hpp>
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
@@ -31,25 +31,6 @@ inline constexpr std::size_t kDensityGroup = 64;
 /// far out), whose key is then left to WorldGrid::index.
 void guess_cell_keys(const WorldGrid& grid, const std::array<float, 3>* points, std::size_t n, std::uint64_t* keys,
                      std::uint8_t* unsure);
-
-/// Calls take(i) for each i < n whose flag[i] (0 or 1) is 1, in order: eight flags a word, since
-/// most words are clear (a cap refuses most points; few keys are unsure), and a set word's bits
-/// visited alone.
-template <class Take>
-void for_each_set(const std::uint8_t* flag, std::size_t n, Take&& take) {
-  std::size_t i = 0;
-  for (; i + 8 <= n; i += 8) {
-    std::uint64_t eight;
-    std::memcpy(&eight, flag + i, sizeof eight);
-    if (eight == 0) continue;
-    for (unsigned bits = verdict_bits(eight); bits != 0; bits &= bits - 1) {
-      take(i + std::size_t(std::countr_zero(bits)));
-    }
-  }
-  for (; i < n; ++i) {
-    if (flag[i] != 0) take(i);
-  }
-}
 
 /// Finds the cells of points[0, n) (their keys) and starts loading their slots.
 inline void find_cells(const CellCounts& counts, const WorldGrid& grid, const std::array<float, 3>* points,
