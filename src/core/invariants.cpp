@@ -1,5 +1,6 @@
 // check_tree (EgoOctree::check_invariants): every structural promise of the tree, checked from scratch.
 
+#include "core/subcells.hpp"
 #include "core/tree.hpp"
 #include "core/invariants.hpp"
 
@@ -40,13 +41,17 @@ class Checker {
         fail(id, "overfull leaf above the minimum cell size");
       }
       if (n.link != detail::kNone && t_.points().owner_of(n.link) != id) fail(id, "its block names another owner");
+      const detail::Subcells walls(t_.lattice(), cell);
+      std::uint64_t subcells = 0;
       t_.points().for_each(n.link, n.count, [&](const detail::StoredPoint& s) {
         ++count;
         bounds.grow(s.p[0], s.p[1], s.p[2]);
         oldest = std::min(oldest, t_.age_key(s));
         if (!t_.lattice().contains(cell, s.p)) fail(id, "point outside its cell");
         if (in_box_ && !box_.contains(s.p[0], s.p[1], s.p[2])) fail(id, "point outside the ego box");
+        subcells |= std::uint64_t{1} << walls.of(s.p);
       });
+      if (t_.config().recentring == Recentring::Quantised && subcells != n.subcells) fail(id, "occupied subcells wrong");
     } else {
       bool any = false;
       for (int o = 0; o < 8; ++o) {

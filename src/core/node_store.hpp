@@ -19,6 +19,7 @@ struct Node {
   std::uint32_t parent = kNone;
   std::uint32_t link = kNone;    // leaf: its point block (PointStore); inner: child block
   std::uint32_t oldest = kNone;  // smallest insertion stamp below (age limit); kNone if empty
+  std::uint64_t subcells = 0;    // leaf, Quantised mode: its occupied subcells (core/subcells.hpp)
   std::uint8_t depth = 0;
   std::uint8_t octant = 0;       // which child of its parent
   bool leaf = true;

@@ -1,6 +1,7 @@
 #include "core/tree.hpp"
 
 #include "core/cell_codes.hpp"
+#include "core/subcells.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -15,6 +16,7 @@ Tree::Tree(const Config& config)
                       config.attributes.time}) {
   cfg_.validate();
   min_leaf_depth_ = cfg_.recentring == Recentring::Quantised ? int(cfg_.quantum_levels) : 0;
+  keeps_subcells_ = cfg_.recentring == Recentring::Quantised;
   lattice_.max_depth = cfg_.max_depth();
 }
 
@@ -317,6 +319,7 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
       added.bounds.grow(s->p[0], s->p[1], s->p[2]);
       added.oldest = std::min(added.oldest, age_key(as_stored(*s)));
     }
+    mark_subcells(id, cell, n.count - m);
     added.add_to(n);
     return added;
   }
@@ -402,6 +405,7 @@ void Tree::split(std::uint32_t id, const Cell& cell) {
       n.bounds.grow(s->p[0], s->p[1], s->p[2]);
       n.oldest = std::min(n.oldest, age_key(*s));
     }
+    mark_subcells(child, lattice_.child(cell, o), 0);
   }
   scratch_.resize(base);
   for (int o = 0; o < 8; ++o) {
@@ -424,6 +428,7 @@ void Tree::refit(std::uint32_t id) {
       bounds.grow(s.p[0], s.p[1], s.p[2]);
       oldest = std::min(oldest, age_key(s));
     });
+    remark_subcells(id);
   } else {
     std::uint32_t count = 0;
     for (int o = 0; o < 8; ++o) {
@@ -437,6 +442,21 @@ void Tree::refit(std::uint32_t id) {
   }
   nodes_[id].bounds = bounds;
   nodes_[id].oldest = oldest;
+}
+
+void Tree::mark_subcells(std::uint32_t id, const Cell& cell, std::uint32_t begin) {
+  if (!keeps_subcells_) return;
+  Node& n = nodes_[id];
+  const PointSpan s = points_.span(n.link, n.count);
+  n.subcells |= Subcells(lattice_, cell).bits(s.x, s.y, s.z, begin, n.count);
+}
+
+void Tree::remark_subcells(std::uint32_t id) {
+  Node& n = nodes_[id];
+  n.subcells = 0;
+  if (!keeps_subcells_ || n.count == 0) return;
+  const PointSpan s = points_.span(n.link, n.count);
+  mark_subcells(id, lattice_.cell_at(n.depth, {s.x[0], s.y[0], s.z[0]}), 0);  // a point names its leaf's cell
 }
 
 void Tree::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
@@ -493,6 +513,7 @@ void Tree::collapse(std::uint32_t id) {
   points_.append(n.link, id, 0, scratch_.data() + base, scratch_.data() + scratch_.size());
   n.count = std::uint32_t(scratch_.size() - base);
   scratch_.resize(base);
+  remark_subcells(id);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -244,6 +244,11 @@ class Tree {
   /// The child of inner node `id` (cell `cell`) at `octant`, created empty if missing.
   std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
   void split(std::uint32_t id, const Cell& cell);
+  /// Adds the subcells of leaf `id`'s points from `begin` on (cell `cell`) to Node::subcells,
+  /// in Quantised mode (core/subcells.hpp).
+  void mark_subcells(std::uint32_t id, const Cell& cell, std::uint32_t begin);
+  /// Node::subcells of leaf `id` from all its points.
+  void remark_subcells(std::uint32_t id);
   struct Added {  // what an insertion put below a node
     Aabb bounds;
     std::uint32_t oldest = kNone;
@@ -293,6 +298,7 @@ class Tree {
   Cell root_cell_;
   Lattice lattice_;
   int min_leaf_depth_ = 0;
+  bool keeps_subcells_ = false;  // Quantised mode: every leaf's Node::subcells kept
   std::optional<Motion> motion_;
   std::uint32_t age_cutoff_ = 0;  // of motion_
   StartTable start_;

@@ -2,12 +2,14 @@
 //
 // When the voxel side is a lattice cell side (Quantised mode, resolution = voxel_size * 2^i), a
 // node at the voxel's depth is one voxel and its points need not be looked at — nor the node
-// itself: its parent lists its children as voxels (no node is empty between updates). The map
-// costs a visit per node above the voxels plus the points of leaves coarser than a voxel (marked
-// in a bitmask against the lattice walls inside the leaf). Distinct leaves never share a voxel then, so a leaf's keys are
+// itself: its parent lists its children as voxels (no node is empty between updates). A leaf one
+// or two levels above the voxels lists the subcells it keeps occupied. The map costs a visit per
+// node above the voxels plus the points of leaves coarser still (marked in a bitmask against the
+// lattice walls inside the leaf). Distinct leaves never share a voxel then, so a leaf's keys are
 // made unique within the leaf and the map needs no global sort.
 // Any other resolution visits every point and sorts.
 
+#include "core/subcells.hpp"
 #include "query/frames.hpp"
 #include "query/queries.hpp"
 
@@ -74,7 +76,9 @@ class LatticeVoxels {
       return;
     }
     if (n.leaf) {
-      if (shift_ >= 0 && depth_ - cell.depth <= kMaskLevels) {
+      if (shift_ >= 0 && depth_ - cell.depth <= 2) {
+        collect_subcells(n, cell);
+      } else if (shift_ >= 0 && depth_ - cell.depth <= kMaskLevels) {
         collect_masked(n, cell);
       } else {
         collect_sorted(n);
@@ -101,6 +105,23 @@ class LatticeVoxels {
   /// The voxel whose lower corner is `cell`'s (a cell at or above the voxels' depth).
   [[nodiscard]] VoxelKey voxel_of(const Cell& cell) const {
     return {cell.lo[0] >> shift_, cell.lo[1] >> shift_, cell.lo[2] >> shift_};
+  }
+
+  /// A leaf one or two levels above the voxels: its voxels are its subcells, kept with it
+  /// (core/subcells.hpp; their walls are the voxels' down to the lattice's finest cells).
+  void collect_subcells(const Node& n, const Cell& cell) {
+    const VoxelKey first = voxel_of(cell);
+    if (depth_ - cell.depth == 2) {
+      for (std::uint64_t bits = n.subcells; bits != 0; bits &= bits - 1) {
+        const int b = std::countr_zero(bits);
+        out_.push_back({first.x + (b & 3), first.y + (b >> 2 & 3), first.z + (b >> 4)});
+      }
+      return;
+    }
+    for (unsigned bits = halved(n.subcells); bits != 0; bits &= bits - 1) {
+      const int b = std::countr_zero(bits);
+      out_.push_back({first.x + (b & 1), first.y + (b >> 1 & 1), first.z + (b >> 2)});
+    }
   }
 
   /// Marks the voxel of each point of leaf `n` (cell `cell`) in a bitmask, found by comparing

@@ -21,6 +21,7 @@ const Shape kShapes[] = {
     {20.0, 8, 0.05, 3},  // the paper's L and N_max
     {7.5, 1, 0.2, 2},    // one point per leaf: splits down to the minimum cell
     {50.0, 32, 0.1, 4},
+    {20.0, 128, 0.1, 3},  // the library's defaults
 };
 
 using Params = std::tuple<Recentring, InsertPolicy, Motion, Cloud, int>;
@@ -68,7 +69,7 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::Values(Motion::Smooth, Motion::Still, Motion::SubQuantum,
                                          Motion::Backwards, Motion::Diagonal, Motion::Teleport),
                        ::testing::Values(Cloud::Uniform, Cloud::Surfaces, Cloud::Duplicates, Cloud::Few),
-                       ::testing::Range(0, 3)),
+                       ::testing::Range(0, int(std::size(kShapes)))),
     param_name);
 
 }  // namespace
