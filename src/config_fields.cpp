@@ -26,7 +26,7 @@ constexpr std::array<std::string_view, 2> kSwitch{"false", "true"};  // a Switch
 const std::array<ConfigField, 22> kFields{{
     {"box_side", ConfigField::Kind::Real, "m", "L: side of the ego cube held around the sensor; typical 10-100",
      0.0, 1e5, true, {}, ECO_FIELD_ACCESS(box_side, double)},
-    {"leaf_capacity", ConfigField::Kind::Count, "points", "N_max: a leaf with more points splits; typical 8-64",
+    {"leaf_capacity", ConfigField::Kind::Count, "points", "N_max: a leaf with more points splits; typical 8-128",
      1.0, kMaxCount, false, {}, ECO_FIELD_ACCESS(leaf_capacity, std::uint32_t)},
     {"min_cell_size", ConfigField::Kind::Real, "m", "cells are never split below this side; typical 0.01-0.5",
      0.0, kInf, true, {}, ECO_FIELD_ACCESS(min_cell_size, double)},

@@ -103,7 +103,7 @@ struct KeptAttributes {
 /// Configuration of an EgoOctree.
 struct Config {
   double box_side = 20.0;  ///< L [m]: side of the ego cube held around the sensor; typical 10–100.
-  std::uint32_t leaf_capacity = 32;  ///< N_max: a leaf with more points splits; typical 8–64.
+  std::uint32_t leaf_capacity = 128;  ///< N_max: a leaf with more points splits; typical 8–128.
   double min_cell_size = 0.05;  ///< [m] cells are never split below this side; typical 0.01–0.5.
   Recentring recentring = Recentring::Quantised;  ///< see Recentring.
   std::uint32_t quantum_levels = 3;  ///< k, Quantised only: q = L / (2^k - 1); range 1–5.

@@ -35,7 +35,7 @@ NEEDS = {"max_age_seconds": {"attributes": eco.KeptAttributes(time=True)}}
 def test_defaults_are_the_cpp_defaults():
     assert eco.Config().to_dict() == {
         "box_side": 20.0,
-        "leaf_capacity": 32,
+        "leaf_capacity": 128,
         "min_cell_size": 0.05,
         "recentring": "Quantised",
         "quantum_levels": 3,

@@ -41,7 +41,7 @@ struct BenchOptions {
 };
 
 /// Named settings of the benchmark. `paper`: Table II (ShiftInOnly, N_max = 8, the default).
-/// The robot's case — raw scans, every point in the box kept, the library's N_max = 32:
+/// The robot's case — raw scans, every point in the box kept, the library's N_max = 128:
 /// `robot` (no cap), `robot-cap-0.2` (1 point per 0.2 m cell, voxel map at 0.2 m: how LiDAR
 /// odometry keeps its map), `robot-cap-0.1` (2 points per 0.1 m cell, voxel map at 0.1 m: eco run's
 /// default). Throws std::invalid_argument for another name.
@@ -50,7 +50,7 @@ inline void apply_preset(const std::string& name, BenchOptions& o) {
     o.config = BenchOptions::paper_config();
     return;
   }
-  Config c;  // the library's defaults: AllInBox, N_max = 32
+  Config c;  // the library's defaults: AllInBox, N_max = 128
   o.workload = WorkloadKind::Dynamic;
   if (name == "robot") {
     o.voxel_resolution = 0.1;
