@@ -3,7 +3,8 @@
 // each that holds a point. The tree keeps it with every leaf in Quantised mode, where the lattice's
 // walls stay put between precision-origin moves, so that a voxel map one or two levels below a
 // leaf reads one word instead of the leaf's points (src/query/voxelize.cpp). Kept as the bounds
-// are: grown as points come in, recomputed when they leave.
+// are: grown as points come in, recomputed when they leave. Scalar on purpose: a leaf takes a
+// few points a batch, too few for vector code to pay for itself (measured).
 
 #include "core/geometry.hpp"
 
@@ -33,10 +34,13 @@ class Subcells {
   [[nodiscard]] int of(const std::array<float, 3>& p) const {
     return along(0, p[0]) | along(1, p[1]) << 2 | along(2, p[2]) << 4;
   }
-  /// The subcells of the points in columns x, y, z [begin, end), as bits (src/core/subcells.cpp:
-  /// in vector code).
-  [[nodiscard]] std::uint64_t bits(const float* x, const float* y, const float* z, std::uint32_t begin,
-                                   std::uint32_t end) const;
+  /// The subcells of points [from, to) (anything with a stored `p`), as bits.
+  template <class Point>
+  [[nodiscard]] std::uint64_t bits(const Point* from, const Point* to) const {
+    std::uint64_t out = 0;
+    for (const Point* s = from; s != to; ++s) out |= std::uint64_t{1} << of(s->p);
+    return out;
+  }
 
  private:
   /// Which quarter of the cell along `axis` holds coordinate v.

@@ -244,10 +244,7 @@ class Tree {
   /// The child of inner node `id` (cell `cell`) at `octant`, created empty if missing.
   std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
   void split(std::uint32_t id, const Cell& cell);
-  /// Adds the subcells of leaf `id`'s points from `begin` on (cell `cell`) to Node::subcells,
-  /// in Quantised mode (core/subcells.hpp).
-  void mark_subcells(std::uint32_t id, const Cell& cell, std::uint32_t begin);
-  /// Node::subcells of leaf `id` from all its points.
+  /// Node::subcells of leaf `id` from all its points, in Quantised mode (core/subcells.hpp).
   void remark_subcells(std::uint32_t id);
   struct Added {  // what an insertion put below a node
     Aabb bounds;

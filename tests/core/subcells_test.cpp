@@ -1,9 +1,9 @@
 // Subcells (src/core/subcells.hpp): a leaf's occupied quarter-cells as one word, against the
 // lattice's own descent two levels down (one level for a cell two units wide), for points on the
-// walls, the float just below them and between them, in runs of every length and offset (the bits
-// are found in vector code, 64 points a chunk).
+// walls, the float just below them and between them, and for runs of points.
 
 #include "core/subcells.hpp"
+#include "support/float_walls.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,14 +15,7 @@
 namespace eco::detail {
 namespace {
 
-float first_float_at_or_above(double w) {
-  float f = float(w);
-  while (double(f) < w) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  while (double(std::nextafter(f, -std::numeric_limits<float>::infinity())) >= w) {
-    f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  }
-  return f;
-}
+using test::first_float_at_or_above;
 
 /// The subcell bit of p by descending the lattice: two levels for cells four units wide or more;
 /// a cell two units wide has one level below it, its halves, which are quarters 1 and 3 (the
@@ -70,10 +63,7 @@ Points points_in(const Lattice& lattice, const Cell& cell, std::mt19937& rng) {
 
 TEST(Subcells, EachPointNamesTheQuarterCellTheLatticeDescendsTo) {
   for (const std::array<double, 3> origin : {std::array<double, 3>{-3.3, 1.7, 0.4}, std::array<double, 3>{-1023.95, 2047.3, -511.05}}) {
-    Lattice lattice;
-    lattice.origin = origin;
-    lattice.unit = 0.05;
-    lattice.max_depth = 9;
+    const Lattice lattice{origin, 0.05, 9};
     std::mt19937 rng(5);
     for (int depth = 2; depth <= 8; ++depth) {
       const std::int64_t side = lattice.side(depth);
@@ -92,20 +82,21 @@ TEST(Subcells, EachPointNamesTheQuarterCellTheLatticeDescendsTo) {
 }
 
 TEST(Subcells, BitsOfARunAreItsPointsSubcells) {
-  Lattice lattice;
-  lattice.origin = {-3.3, 1.7, 0.4};
-  lattice.unit = 0.05;
-  lattice.max_depth = 9;
+  const Lattice lattice{{-3.3, 1.7, 0.4}, 0.05, 9};
   std::mt19937 rng(8);
   const Cell cell{{64, 128, 32}, 4};  // 32 units a side
   const Points pts = points_in(lattice, cell, rng);
+  struct Stored {
+    std::array<float, 3> p;
+  };
+  std::vector<Stored> run;
+  for (std::size_t i = 0; i < pts.x.size(); ++i) run.push_back({pts.at(i)});
   const Subcells walls(lattice, cell);
-  const auto n = std::uint32_t(pts.x.size());
-  for (const std::uint32_t begin : {0u, 1u, 3u, 63u, 64u, 65u}) {
-    for (std::uint32_t end = begin; end <= n; end += 1 + end / 8) {
+  for (std::size_t begin = 0; begin < run.size(); begin += 7) {
+    for (std::size_t end = begin; end <= run.size(); end += 1 + end / 8) {
       std::uint64_t want = 0;
-      for (std::uint32_t i = begin; i < end; ++i) want |= std::uint64_t{1} << walls.of(pts.at(i));
-      ASSERT_EQ(walls.bits(pts.x.data(), pts.y.data(), pts.z.data(), begin, end), want) << begin << ".." << end;
+      for (std::size_t i = begin; i < end; ++i) want |= std::uint64_t{1} << descended_subcell(lattice, cell, run[i].p);
+      ASSERT_EQ(walls.bits(run.data() + begin, run.data() + end), want) << begin << ".." << end;
     }
   }
 }

@@ -4,6 +4,7 @@
 // resolution.
 
 #include "support/compare.hpp"
+#include "support/float_walls.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,16 +15,6 @@
 
 namespace eco::test {
 namespace {
-
-/// The least float f with double(f) >= w (the test's own, from the definition).
-float first_float_at_or_above(double w) {
-  float f = float(w);
-  while (double(f) < w) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  while (double(std::nextafter(f, -std::numeric_limits<float>::infinity())) >= w) {
-    f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  }
-  return f;
-}
 
 TEST(VoxelWalls, PointsOnAndJustBelowWallsInLeavesOfEveryCoarseness) {
   // The sensor sits on the precision origin with no rotation, so a scan point is stored as given:
