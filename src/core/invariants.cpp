@@ -51,7 +51,7 @@ class Checker {
         if (in_box_ && !box_.contains(s.p[0], s.p[1], s.p[2])) fail(id, "point outside the ego box");
         subcells |= std::uint64_t{1} << walls.of(s.p);
       });
-      if (t_.config().recentring == Recentring::Quantised && subcells != n.subcells) fail(id, "occupied subcells wrong");
+      if (t_.config().recentring == Recentring::Quantised && subcells != n.subcells()) fail(id, "occupied subcells wrong");
     } else {
       bool any = false;
       for (int o = 0; o < 8; ++o) {

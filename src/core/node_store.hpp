@@ -19,11 +19,17 @@ struct Node {
   std::uint32_t parent = kNone;
   std::uint32_t link = kNone;    // leaf: its point block (PointStore); inner: child block
   std::uint32_t oldest = kNone;  // smallest insertion stamp below (age limit); kNone if empty
-  std::uint64_t subcells = 0;    // leaf, Quantised mode: its occupied subcells (core/subcells.hpp)
+  // leaf, Quantised mode: its occupied subcells (core/subcells.hpp), as two words so that the
+  // node stays 4-byte aligned (52 B, not 56)
+  std::array<std::uint32_t, 2> subcell_words{};
   std::uint8_t depth = 0;
   std::uint8_t octant = 0;       // which child of its parent
   bool leaf = true;
+
+  [[nodiscard]] std::uint64_t subcells() const { return subcell_words[0] | std::uint64_t{subcell_words[1]} << 32; }
+  void set_subcells(std::uint64_t bits) { subcell_words = {std::uint32_t(bits), std::uint32_t(bits >> 32)}; }
 };
+static_assert(sizeof(Node) == 52);
 
 /// Eight child slots of an inner node; kNone marks an empty octant.
 struct ChildBlock {

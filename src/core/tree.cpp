@@ -319,7 +319,7 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
       added.bounds.grow(s->p[0], s->p[1], s->p[2]);
       added.oldest = std::min(added.oldest, age_key(as_stored(*s)));
     }
-    if (keeps_subcells_) n.subcells |= Subcells(lattice_, cell).bits(from, to);
+    if (keeps_subcells_) n.set_subcells(n.subcells() | Subcells(lattice_, cell).bits(from, to));
     added.add_to(n);
     return added;
   }
@@ -405,7 +405,7 @@ void Tree::split(std::uint32_t id, const Cell& cell) {
       n.bounds.grow(s->p[0], s->p[1], s->p[2]);
       n.oldest = std::min(n.oldest, age_key(*s));
     }
-    if (keeps_subcells_) n.subcells = Subcells(lattice_, lattice_.child(cell, o)).bits(from, to);
+    if (keeps_subcells_) n.set_subcells(Subcells(lattice_, lattice_.child(cell, o)).bits(from, to));
   }
   scratch_.resize(base);
   for (int o = 0; o < 8; ++o) {
@@ -446,11 +446,13 @@ void Tree::refit(std::uint32_t id) {
 
 void Tree::remark_subcells(std::uint32_t id) {
   Node& n = nodes_[id];
-  n.subcells = 0;
+  n.set_subcells(0);
   if (!keeps_subcells_ || n.count == 0) return;
   const PointSpan s = points_.span(n.link, n.count);
   const Subcells quarters(lattice_, lattice_.cell_at(n.depth, {s.x[0], s.y[0], s.z[0]}));  // a point names its leaf's cell
-  for (std::uint32_t i = 0; i < n.count; ++i) n.subcells |= std::uint64_t{1} << quarters.of({s.x[i], s.y[i], s.z[i]});
+  std::uint64_t bits = 0;
+  for (std::uint32_t i = 0; i < n.count; ++i) bits |= std::uint64_t{1} << quarters.of({s.x[i], s.y[i], s.z[i]});
+  n.set_subcells(bits);
 }
 
 void Tree::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {

@@ -112,13 +112,13 @@ class LatticeVoxels {
   void collect_subcells(const Node& n, const Cell& cell) {
     const VoxelKey first = voxel_of(cell);
     if (depth_ - cell.depth == 2) {
-      for (std::uint64_t bits = n.subcells; bits != 0; bits &= bits - 1) {
+      for (std::uint64_t bits = n.subcells(); bits != 0; bits &= bits - 1) {
         const int b = std::countr_zero(bits);
         out_.push_back({first.x + (b & 3), first.y + (b >> 2 & 3), first.z + (b >> 4)});
       }
       return;
     }
-    for (unsigned bits = halved(n.subcells); bits != 0; bits &= bits - 1) {
+    for (unsigned bits = halved(n.subcells()); bits != 0; bits &= bits - 1) {
       const int b = std::countr_zero(bits);
       out_.push_back({first.x + (b & 1), first.y + (b >> 1 & 1), first.z + (b >> 2)});
     }
