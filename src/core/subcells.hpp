@@ -21,6 +21,7 @@ namespace eco::detail {
 /// distinct only as far as the lattice goes, which is as far as a voxel map looks.
 class Subcells {
  public:
+  Subcells() = default;  // of no cell: a placeholder, not to be asked
   Subcells(const Lattice& lattice, const Cell& cell) {
     const std::int64_t side = lattice.side(cell.depth);
     for (int a = 0; a < 3; ++a) {

@@ -424,11 +424,18 @@ void Tree::refit(std::uint32_t id) {
   Aabb bounds;
   std::uint32_t oldest = kNone;
   if (n.leaf) {
-    points_.for_each(n.link, n.count, [&](const StoredPoint& s) {
-      bounds.grow(s.p[0], s.p[1], s.p[2]);
-      oldest = std::min(oldest, age_key(s));
-    });
-    remark_subcells(id);
+    // the subcells in the same pass (Quantised mode); a point names its leaf's cell
+    const PointSpan s = points_.span(n.link, n.count);
+    const bool marks = keeps_subcells_ && n.count > 0;
+    const Subcells quarters = marks ? Subcells(lattice_, lattice_.cell_at(n.depth, {s.x[0], s.y[0], s.z[0]})) : Subcells();
+    std::uint64_t subcells = 0;
+    for (std::uint32_t i = 0; i < n.count; ++i) {
+      const StoredPoint p = s[i];
+      bounds.grow(p.p[0], p.p[1], p.p[2]);
+      oldest = std::min(oldest, age_key(p));
+      if (marks) subcells |= std::uint64_t{1} << quarters.of(p.p);
+    }
+    n.set_subcells(subcells);
   } else {
     std::uint32_t count = 0;
     for (int o = 0; o < 8; ++o) {
@@ -442,17 +449,6 @@ void Tree::refit(std::uint32_t id) {
   }
   nodes_[id].bounds = bounds;
   nodes_[id].oldest = oldest;
-}
-
-void Tree::remark_subcells(std::uint32_t id) {
-  Node& n = nodes_[id];
-  n.set_subcells(0);
-  if (!keeps_subcells_ || n.count == 0) return;
-  const PointSpan s = points_.span(n.link, n.count);
-  const Subcells quarters(lattice_, lattice_.cell_at(n.depth, {s.x[0], s.y[0], s.z[0]}));  // a point names its leaf's cell
-  std::uint64_t bits = 0;
-  for (std::uint32_t i = 0; i < n.count; ++i) bits |= std::uint64_t{1} << quarters.of({s.x[i], s.y[i], s.z[i]});
-  n.set_subcells(bits);
 }
 
 void Tree::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
@@ -509,7 +505,7 @@ void Tree::collapse(std::uint32_t id) {
   points_.append(n.link, id, 0, scratch_.data() + base, scratch_.data() + scratch_.size());
   n.count = std::uint32_t(scratch_.size() - base);
   scratch_.resize(base);
-  remark_subcells(id);
+  refit(id);  // its subcells (bounds and ages as its children's were)
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -244,8 +244,6 @@ class Tree {
   /// The child of inner node `id` (cell `cell`) at `octant`, created empty if missing.
   std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
   void split(std::uint32_t id, const Cell& cell);
-  /// Node::subcells of leaf `id` from all its points, in Quantised mode (core/subcells.hpp).
-  void remark_subcells(std::uint32_t id);
   struct Added {  // what an insertion put below a node
     Aabb bounds;
     std::uint32_t oldest = kNone;
