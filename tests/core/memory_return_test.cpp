@@ -54,8 +54,8 @@ TEST(MemoryReturn, AMapThatShrinksGivesBackWhatItHeldAndLosesNothing) {
       peak = std::max(peak, tree.stats().bytes);
     }
     ASSERT_LT(tree.size(), 10000u);
-    // without giving back, the point pools would keep the dense frames' ~7 MB (the nodes, ~1.8 MB
-    // here, keep their peak)
+    // without giving back, the point pools would keep the dense frames' ~7 MB (node slots keep
+    // their peak)
     EXPECT_LT(tree.stats().bytes, peak / 3) << "peak " << peak << " B, now " << tree.size() << " points";
   }
 }
