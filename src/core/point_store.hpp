@@ -74,12 +74,14 @@ class PointStore {
 
   /// Appends [first, last) (StoredPoints, or BarePoints when no column is kept) to the block at
   /// `link` that holds `count` points (kNone: no block yet), of node `owner` (compact() tells it
-  /// when its block moves).
+  /// when its block moves). A block that must grow is made to hold `room` points if that is more
+  /// (points known to be on their way).
   template <class Point>
-  void append(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const Point* first, const Point* last) {
+  void append(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const Point* first, const Point* last,
+              std::uint32_t room = 0) {
     const auto m = std::uint32_t(last - first);
     if (m == 0) return;
-    reserve(link, owner, count, count + m);
+    reserve(link, owner, count, std::max(count + m, room));
     Block b = block(link);
     // column by column: each loop writes one array, with no test per point
     float* x = b.x + count;

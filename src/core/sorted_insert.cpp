@@ -57,10 +57,14 @@ Tree::Added Tree::descend_sorted(std::uint32_t id, const Cell& cell, int level, 
       (nodes_[id].leaf && nodes_[id].count + m <= cfg_.leaf_capacity)) {
     return insert_range(id, cell, from, to, temp);  // a leaf with room, or below the coded levels
   }
-  if (nodes_[id].leaf) split(id, cell);  // holds at most leaf_capacity: its children need no split
+  const int shift = 3 * (kCodeLevels - 1 - level);
+  if (nodes_[id].leaf) {  // it holds at most leaf_capacity: its children need no split
+    std::array<std::uint32_t, 8> incoming{};
+    for (std::uint32_t i = 0; i < m; ++i) ++incoming[(codes[i] >> shift) & 7u];
+    split(id, cell, incoming);
+  }
   nodes_.prefetch_children(id);
   Added added;
-  const int shift = 3 * (kCodeLevels - 1 - level);
   for (std::uint32_t begin = 0, end = 0; begin < m; begin = end) {  // an octant's points lie together, in order
     const std::uint32_t octant = (codes[begin] >> shift) & 7u;
     while (end < m && ((codes[end] >> shift) & 7u) == octant) ++end;

@@ -323,8 +323,6 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
     added.add_to(n);
     return added;
   }
-  if (nodes_[id].leaf) split(id, cell);  // holds at most leaf_capacity: its children need no split
-  nodes_.prefetch_children(id);  // their misses overlap the partition below
   // Partition by octant into `temp` (a counting sort); the children read from there and use
   // this range as theirs. Bounds and ages are taken once, at the leaves, and summed on the way up.
   const std::int64_t half = lattice_.side(cell.depth) / 2;
@@ -343,6 +341,12 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
     ++second_half[std::size_t(octant(from[h + i]))];
   }
   if (m % 2 != 0) ++second_half[std::size_t(octant(from[m - 1]))];
+  if (nodes_[id].leaf) {  // it holds at most leaf_capacity: its children need no split
+    std::array<std::uint32_t, 8> incoming{};
+    for (std::size_t o = 0; o < 8; ++o) incoming[o] = first_half[o] + second_half[o];
+    split(id, cell, incoming);
+  }
+  nodes_.prefetch_children(id);  // their misses overlap the scatter below
   std::array<std::uint32_t, 9> begin{};
   std::array<std::uint32_t, 8> at{}, at2{};
   for (std::size_t o = 0; o < 8; ++o) {
@@ -377,7 +381,7 @@ std::uint32_t Tree::child_or_new(std::uint32_t id, const Cell& cell, int octant)
   return ch;
 }
 
-void Tree::split(std::uint32_t id, const Cell& cell) {
+void Tree::split(std::uint32_t id, const Cell& cell, const std::array<std::uint32_t, 8>& incoming) {
   const std::size_t base = scratch_.size();
   points_.drain(nodes_[id].link, nodes_[id].count, scratch_);
   nodes_.make_inner(id);
@@ -399,8 +403,10 @@ void Tree::split(std::uint32_t id, const Cell& cell) {
     if (from == to) continue;
     const std::uint32_t child = child_or_new(id, cell, o);
     Node& n = nodes_[child];
-    points_.append(n.link, child, n.count, from, to);
-    n.count += std::uint32_t(to - from);
+    const auto own = std::uint32_t(to - from);
+    const std::uint32_t all = own + incoming[std::size_t(o)];
+    points_.append(n.link, child, n.count, from, to, all <= cfg_.leaf_capacity ? all : 0);
+    n.count += own;
     for (const StoredPoint* s = from; s != to; ++s) {
       n.bounds.grow(s->p[0], s->p[1], s->p[2]);
       n.oldest = std::min(n.oldest, age_key(*s));

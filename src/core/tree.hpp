@@ -243,7 +243,9 @@ class Tree {
   void make_root();
   /// The child of inner node `id` (cell `cell`) at `octant`, created empty if missing.
   std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
-  void split(std::uint32_t id, const Cell& cell);
+  /// Splits leaf `id` (cell `cell`); `incoming[o]` points are about to follow into octant o, and
+  /// a child that will hold them all without splitting gets a block with room for them.
+  void split(std::uint32_t id, const Cell& cell, const std::array<std::uint32_t, 8>& incoming = {});
   struct Added {  // what an insertion put below a node
     Aabb bounds;
     std::uint32_t oldest = kNone;

@@ -166,6 +166,29 @@ TEST(PointStore, ReleasedBlocksAreReusedBeforeThePoolsGrow) {
   }
 }
 
+TEST(PointStore, ABlockGivenRoomTakesThatManyPointsWithoutMoving) {
+  std::vector<StoredPoint> points(128);
+  for (std::uint32_t i = 0; i < points.size(); ++i) points[i] = {{float(i), 0.5f, -float(i)}, 0, i, 0.0f, 0.0f};
+  // fills a block to 40 points one at a time after a first append of 3 given `room`; how often it moved
+  auto moves_to_40 = [&](std::uint32_t room) {
+    PointStore store(Columns{false, true, false, false});
+    std::uint32_t link = kNone;
+    store.append(link, 7, 0, points.data(), points.data() + 3, room);
+    std::uint32_t moves = 0;
+    for (std::uint32_t count = 3; count < 40; ++count) {
+      const std::uint32_t before = link;
+      store.append(link, 7, count, points.data() + count, points.data() + count + 1);
+      moves += link != before;
+    }
+    EXPECT_TRUE(same(contents(store, link, 40), std::vector<StoredPoint>(points.begin(), points.begin() + 40)));
+    return moves;
+  };
+  EXPECT_GT(moves_to_40(0), 5u);  // without room, through the size classes
+  EXPECT_GT(moves_to_40(20), 0u);
+  EXPECT_EQ(moves_to_40(40), 0u);
+  EXPECT_EQ(moves_to_40(128), 0u);
+}
+
 TEST(PointStore, CompactionGivesBackThePagesAShrunkMapEmptiedWithinItsBudget) {
   PointStore store(Columns{false, true, true, true});
   std::mt19937 rng(5);
