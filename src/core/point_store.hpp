@@ -81,7 +81,7 @@ class PointStore {
               std::uint32_t room = 0) {
     const auto m = std::uint32_t(last - first);
     if (m == 0) return;
-    reserve(link, owner, count, std::max(count + m, room));
+    reserve(link, owner, count, count + m, room);
     Block b = block(link);
     // column by column: each loop writes one array, with no test per point
     float* x = b.x + count;
@@ -309,11 +309,12 @@ class PointStore {
     if (b.times) b.times[i] = s.time;
   }
 
-  /// Makes the block at `link` (holding `count`, of node `owner`) hold at least `needed` points.
-  void reserve(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, std::uint32_t needed) {
+  /// Makes the block at `link` (holding `count`, of node `owner`) hold at least `needed` points;
+  /// a block that must move for them is made to hold `room` if that is more.
+  void reserve(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, std::uint32_t needed, std::uint32_t room) {
     assert(link == kNone || owner_of(link) == owner);
     if (link != kNone && capacity_of(class_of(link)) >= needed) return;
-    move_to(link, owner, count, class_for(needed));
+    move_to(link, owner, count, class_for(std::max(needed, room)));
   }
   /// Moves the `count` points at `link` (of node `owner`) to a fresh block of class c.
   void move_to(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, int c) {

@@ -78,7 +78,7 @@ class LatticeVoxels {
     if (n.leaf) {
       if (shift_ >= 0 && depth_ - cell.depth <= 2) {
         collect_subcells(n, cell);
-      } else if (shift_ >= 0 && depth_ - cell.depth <= kMaskLevels) {
+      } else if (shift_ >= 0 && depth_ - cell.depth == kMaskLevels) {
         collect_masked(n, cell);
       } else {
         collect_sorted(n);
@@ -99,7 +99,8 @@ class LatticeVoxels {
   }
 
  private:
-  /// A leaf at most this many levels above the voxels marks its voxels in a bitmask (8^3 bits).
+  /// A leaf this many levels above the voxels marks its voxels in a bitmask (8^3 bits); nearer
+  /// ones list their subcells.
   static constexpr int kMaskLevels = 3;
 
   /// The voxel whose lower corner is `cell`'s (a cell at or above the voxels' depth).
@@ -124,19 +125,11 @@ class LatticeVoxels {
     }
   }
 
-  /// Marks the voxel of each point of leaf `n` (cell `cell`) in a bitmask, found by comparing
-  /// with the lattice walls inside the cell, then lists the marked voxels: no division, no sort.
+  /// Marks the voxel of each point of leaf `n` (cell `cell`, kMaskLevels above the voxels) in a
+  /// bitmask, found by comparing with the lattice walls inside the cell, then lists the marked
+  /// voxels: no division, no sort (loops of a known length: unrolled, without branches).
   void collect_masked(const Node& n, const Cell& cell) {
-    switch (depth_ - cell.depth) {  // loops of a known length: unrolled, without branches
-      case 1: return collect_masked<1>(n, cell);
-      case 2: return collect_masked<2>(n, cell);
-      default: return collect_masked<3>(n, cell);
-    }
-  }
-  template <int Levels>
-  void collect_masked(const Node& n, const Cell& cell) {
-    static_assert(Levels <= kMaskLevels);
-    constexpr int per_axis = 1 << Levels;
+    constexpr int per_axis = 1 << kMaskLevels;
     const std::int64_t step = t_.lattice().side(depth_);
     std::array<std::array<float, per_axis - 1>, 3> walls{};  // the inner walls
     for (int a = 0; a < 3; ++a) {
