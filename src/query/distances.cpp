@@ -1,17 +1,64 @@
 #include "query/distances.hpp"
 
+#include "core/set_flags.hpp"
 #include "core/vector_clones.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cstring>
 
 namespace eco::detail {
 
+namespace {
+
+/// flags[0, n) (0 or 1, zero past n up to the next multiple of 8) as bits, eight a multiply.
+std::uint64_t as_bits(const std::uint8_t* flags, std::size_t n) {
+  std::uint64_t bits = 0;
+  for (std::size_t w = 0; w < (n + 7) / 8; ++w) {
+    std::uint64_t eight;
+    std::memcpy(&eight, flags + 8 * w, sizeof eight);
+    bits |= std::uint64_t(verdict_bits(eight)) << (8 * w);
+  }
+  return bits;
+}
+
+}  // namespace
+
 ECO_VECTOR_CLONES
-void squared_distances(const float* x, const float* y, const float* z, std::size_t n, const std::array<double, 3>& q,
-                       double* out) {
+std::uint64_t squared_distances(const float* x, const float* y, const float* z, std::size_t n,
+                                const std::array<double, 3>& q, double bound, double* out) {
+  assert(n <= kMaxDistances);
   const double qx = q[0], qy = q[1], qz = q[2];  // copies: `out` could alias q for all the compiler knows
+  std::uint8_t below[kMaxDistances] = {};        // flags past n stay 0
   for (std::size_t i = 0; i < n; ++i) {
     const double dx = double(x[i]) - qx, dy = double(y[i]) - qy, dz = double(z[i]) - qz;
-    out[i] = dx * dx + dy * dy + dz * dz;
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    out[i] = d2;
+    below[i] = std::uint8_t(d2 < bound);
   }
+  return as_bits(below, n);
+}
+
+ECO_VECTOR_CLONES
+double kth_group_minimum(const double* d2, std::size_t n, std::size_t k) {
+  assert(1 <= k && k <= kGroups && kGroups <= n);
+  std::array<double, kGroups> minima;
+  std::copy(d2, d2 + kGroups, minima.begin());
+  std::size_t i = kGroups;
+  for (; i + kGroups <= n; i += kGroups) {
+    for (std::size_t g = 0; g < kGroups; ++g) minima[g] = std::min(minima[g], d2[i + g]);
+  }
+  for (std::size_t g = 0; i + g < n; ++g) minima[g] = std::min(minima[g], d2[i + g]);
+  std::nth_element(minima.begin(), minima.begin() + std::ptrdiff_t(k - 1), minima.end());
+  return minima[k - 1];
+}
+
+ECO_VECTOR_CLONES
+std::uint64_t at_most(const double* d2, std::size_t n, double bound) {
+  assert(n <= kMaxDistances);
+  std::uint8_t flags[kMaxDistances] = {};
+  for (std::size_t i = 0; i < n; ++i) flags[i] = std::uint8_t(d2[i] <= bound);
+  return as_bits(flags, n);
 }
 
 }  // namespace eco::detail

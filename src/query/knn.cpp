@@ -9,6 +9,7 @@
 #include <eco/ego_octree.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -16,26 +17,56 @@
 namespace eco {
 namespace {
 
-/// Results as Neighbors: points in the anchor frame until the search ends (stored floats, held
-/// exactly in double), attributes as stored.
-class NeighborResults {
+/// Whether more than `count` of the bits are set (counted no further: the baseline x86-64 has no
+/// popcount instruction).
+bool more_bits_than(std::uint64_t bits, std::size_t count) {
+  for (std::size_t i = 0; i <= count; ++i, bits &= bits - 1) {
+    if (bits == 0) return false;
+  }
+  return true;
+}
+
+/// Results as references to the held points (a leaf's block and an index in it), written out as
+/// Neighbors when the search ends: an insertion shifts 16 bytes an entry, not a Neighbor's 48.
+struct Candidate {
+  double sq_dist;
+  std::uint32_t link;
+  std::uint32_t index;
+};
+
+class CandidateResults {
  public:
-  explicit NeighborResults(std::span<Neighbor> out, bool with_attributes)
-      : out_(out), with_attributes_(with_attributes) {}
+  explicit CandidateResults(std::span<Candidate> out) : out_(out) {}
   [[nodiscard]] std::size_t capacity() const { return out_.size(); }
   [[nodiscard]] double sq_dist(std::size_t i) const { return out_[i].sq_dist; }
   void move_down(std::size_t i) { out_[i] = out_[i - 1]; }
-  void put(std::size_t i, double d2, const detail::PointSpan& c, std::uint32_t j) {
-    Neighbor& n = out_[i];
-    n.point = {c.x[j], c.y[j], c.z[j]};
-    n.sq_dist = d2;
-    const detail::StoredPoint s = with_attributes_ ? c[j] : detail::StoredPoint{};
-    n.attributes = {s.id, s.intensity, double(s.time)};  // the time as stored: see knn_query
+  void put(std::size_t i, double d2, const detail::PointSpan&, std::uint32_t link, std::uint32_t j) {
+    out_[i] = {d2, link, j};
+  }
+
+ private:
+  std::span<Candidate> out_;
+};
+
+/// Results as Neighbors: points in the anchor frame until the search ends (stored floats, held
+/// exactly in double), attributes as stored. For a k beyond CandidateResults' stack.
+class NeighborResults {
+ public:
+  explicit NeighborResults(std::span<Neighbor> out) : out_(out) {}
+  [[nodiscard]] std::size_t capacity() const { return out_.size(); }
+  [[nodiscard]] double sq_dist(std::size_t i) const { return out_[i].sq_dist; }
+  void move_down(std::size_t i) { out_[i] = out_[i - 1]; }
+  void put(std::size_t i, double d2, const detail::PointSpan& c, std::uint32_t /*link*/, std::uint32_t j) {
+    out_[i] = as_stored(c[j], d2);
+  }
+
+  /// A held point as a Neighbor in the anchor frame, its time as stored (knn_query converts both).
+  static Neighbor as_stored(const detail::StoredPoint& s, double d2) {
+    return {{s.p[0], s.p[1], s.p[2]}, d2, {s.id, s.intensity, double(s.time)}};
   }
 
  private:
   std::span<Neighbor> out_;
-  bool with_attributes_;
 };
 
 /// Results as ids and squared distances (nanoflann's style).
@@ -48,7 +79,7 @@ class IdResults {
     ids_[i] = ids_[i - 1];
     sq_dists_[i] = sq_dists_[i - 1];
   }
-  void put(std::size_t i, double d2, const detail::PointSpan& c, std::uint32_t j) {
+  void put(std::size_t i, double d2, const detail::PointSpan& c, std::uint32_t /*link*/, std::uint32_t j) {
     ids_[i] = c.ids[j];
     sq_dists_[i] = d2;
   }
@@ -108,7 +139,6 @@ class KnnSearch {
     int depth;
   };
   static constexpr std::size_t kMaxPath = 64;  // nodes from the root down: more than Config's deepest level
-  static constexpr std::uint32_t kDistances = 32;  // a leaf's points measured at a time (Config's default capacity)
 
   /// The squared distance from the query to the nearest wall of `cell`, from inside (0 outside).
   [[nodiscard]] double inside_gap(const detail::Cell& cell) const {
@@ -127,12 +157,12 @@ class KnnSearch {
 
   /// Inserts in order: a shift of the farther ones, cheaper than a heap for the small k of
   /// registration (nanoflann's result sets do the same).
-  void offer(double d2, const detail::PointSpan& c, std::uint32_t j) {
+  void offer(double d2, const detail::PointSpan& c, std::uint32_t link, std::uint32_t j) {
     const std::size_t k = results_.capacity();
     if (found_ < k) ++found_;
     std::size_t i = found_ - 1;
     for (; i > 0 && results_.sq_dist(i - 1) > d2; --i) results_.move_down(i);
-    results_.put(i, d2, c, j);
+    results_.put(i, d2, c, link, j);
     if (found_ == k) worst_ = results_.sq_dist(found_ - 1);
   }
 
@@ -140,12 +170,20 @@ class KnnSearch {
     const detail::Node& n = t_.nodes()[id];
     if (n.leaf) {
       const detail::PointSpan c = t_.points().span(n.link, n.count);
-      std::array<double, kDistances> d2;
-      for (std::uint32_t begin = 0; begin < c.size; begin += kDistances) {
-        const std::uint32_t m = std::min<std::uint32_t>(kDistances, c.size - begin);
-        detail::squared_distances(c.x + begin, c.y + begin, c.z + begin, m, q_, d2.data());
-        for (std::uint32_t i = 0; i < m; ++i) {
-          if (d2[i] < worst()) offer(d2[i], c, begin + i);
+      std::array<double, detail::kMaxDistances> d2;
+      for (std::uint32_t begin = 0; begin < c.size; begin += detail::kMaxDistances) {
+        const auto m = std::min<std::uint32_t>(detail::kMaxDistances, c.size - begin);
+        // the points nearer than the k-th distance on entry; each asked again, as offers lower it
+        std::uint64_t near = detail::squared_distances(c.x + begin, c.y + begin, c.z + begin, m, q_, worst(), d2.data());
+        // Many points nearer than the k-th distance (the first leaf's): most would enter the
+        // results only to be pushed out. A bound from eight of them leaves the few that can stay.
+        const std::size_t k = results_.capacity();
+        if (k <= detail::kGroups && m >= detail::kGroups && more_bits_than(near, 2 * k)) {
+          near &= detail::at_most(d2.data(), m, detail::kth_group_minimum(d2.data(), m, k));
+        }
+        for (; near != 0; near &= near - 1) {
+          const auto i = std::uint32_t(std::countr_zero(near));
+          if (d2[i] < worst()) offer(d2[i], c, n.link, begin + i);
         }
       }
       return;
@@ -203,10 +241,21 @@ namespace detail {
 
 std::size_t knn_query(const Tree& t, const Eigen::Vector3d& query, std::span<Neighbor> out, Frame frame) {
   require_finite(query, "knn", "query");
+  const std::array<double, 3> q = to_anchor_frame(t, query, frame);
+  constexpr std::size_t kOnStack = 32;  // registration asks for 5-20
+  std::size_t found = 0;
+  if (out.size() <= kOnStack) {  // references ranked, the points read once at the end
+    std::array<Candidate, kOnStack> on_stack;
+    const std::span<Candidate> ranked = std::span<Candidate>(on_stack).first(out.size());
+    found = KnnSearch(t, q, CandidateResults(ranked)).run();
+    for (std::size_t i = 0; i < found; ++i) {
+      const Candidate& c = ranked[i];
+      out[i] = NeighborResults::as_stored(t.points().span(c.link, c.index + 1)[c.index], c.sq_dist);
+    }
+  } else {
+    found = KnnSearch(t, q, NeighborResults(out)).run();
+  }
   const bool times = t.config().attributes.time;
-  const bool with_attributes = t.config().attributes.any();
-  const std::size_t found =
-      KnnSearch(t, to_anchor_frame(t, query, frame), NeighborResults(out, with_attributes)).run();
   for (Neighbor& n : out.first(found)) {
     n.point = from_stored(t, {float(n.point[0]), float(n.point[1]), float(n.point[2])}, frame);
     if (times) n.attributes.time = t.to_seconds(float(n.attributes.time));
