@@ -42,6 +42,7 @@ std::uint64_t squared_distances(const float* x, const float* y, const float* z, 
 ECO_VECTOR_CLONES
 double kth_group_minimum(const double* d2, std::size_t n, std::size_t k) {
   assert(1 <= k && k <= kGroups && kGroups <= n);
+  static_assert(kGroups == 8, "the sorting network below sorts eight");
   std::array<double, kGroups> minima;
   std::copy(d2, d2 + kGroups, minima.begin());
   std::size_t i = kGroups;
@@ -49,7 +50,15 @@ double kth_group_minimum(const double* d2, std::size_t n, std::size_t k) {
     for (std::size_t g = 0; g < kGroups; ++g) minima[g] = std::min(minima[g], d2[i + g]);
   }
   for (std::size_t g = 0; i + g < n; ++g) minima[g] = std::min(minima[g], d2[i + g]);
-  std::nth_element(minima.begin(), minima.begin() + std::ptrdiff_t(k - 1), minima.end());
+  // sorted by a network of 19 compare-exchanges (min and max: no branch to mispredict)
+  constexpr std::array<std::array<std::uint8_t, 2>, 19> kNetwork{{{0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6},
+                                                                 {3, 7}, {0, 1}, {2, 3}, {4, 5}, {6, 7}, {2, 4}, {3, 5},
+                                                                 {1, 4}, {3, 6}, {1, 2}, {3, 4}, {5, 6}}};
+  for (const auto& [a, b] : kNetwork) {
+    const double low = std::min(minima[a], minima[b]), high = std::max(minima[a], minima[b]);
+    minima[a] = low;
+    minima[b] = high;
+  }
   return minima[k - 1];
 }
 

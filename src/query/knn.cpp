@@ -200,25 +200,28 @@ class KnnSearch {
       const double below = std::max({lo - q_[a], 0.0, q_[a] - mid}), above = std::max({mid - q_[a], 0.0, q_[a] - hi});
       gap[std::size_t(a)] = {below * below, above * above};
     }
-    double gaps[8];  // of the children present, in octant order, then sorted: plain arrays, not zeroed
-    int octants[8];
+    // Per child present: its cell's squared gap as a word whose order is the gap's (a non-negative
+    // double's bits order as integers), its octant in the lowest three bits. The word, read as a
+    // double, is a lower bound of the gap, so it prunes soundly. (Sorting gaps and octants side by
+    // side by swaps, the compiler loaded pairs of gaps just stored one by one: a stall a child.)
+    std::uint64_t order[8];  // of the children present, then sorted: a plain array, not zeroed
     int m = 0;
     for (int o = 0; o < 8; ++o) {
       const std::uint32_t ch = t_.nodes().child(id, o);
       if (ch == detail::kNone) continue;
       t_.nodes().prefetch(ch);  // read below unless its cell is pruned: the misses overlap
-      gaps[m] = gap[0][std::size_t(o & 1)] + gap[1][std::size_t(o >> 1 & 1)] + gap[2][std::size_t(o >> 2)];
-      octants[m++] = o;
+      const double g = gap[0][std::size_t(o & 1)] + gap[1][std::size_t(o >> 1 & 1)] + gap[2][std::size_t(o >> 2)];
+      order[m++] = (std::bit_cast<std::uint64_t>(g) & ~std::uint64_t{7}) | std::uint64_t(o);
     }
-    for (int i = 1; i < m; ++i) {  // insertion sort, stable (equal gaps stay in octant order): at most eight children
-      for (int j = i; j > 0 && gaps[j] < gaps[j - 1]; --j) {
-        std::swap(gaps[j], gaps[j - 1]);
-        std::swap(octants[j], octants[j - 1]);
-      }
+    for (int i = 1; i < m; ++i) {  // insertion sort: at most eight children (equal gaps in octant order)
+      const std::uint64_t key = order[i];
+      int j = i;
+      for (; j > 0 && order[j - 1] > key; --j) order[j] = order[j - 1];
+      order[j] = key;
     }
     for (int i = 0; i < m; ++i) {
-      if (gaps[i] >= worst()) break;
-      const int o = octants[i];
+      if (std::bit_cast<double>(order[i] & ~std::uint64_t{7}) >= worst()) break;
+      const int o = int(order[i] & 7);
       const std::uint32_t ch = t_.nodes().child(id, o);
       if (ch == searched_) continue;  // searched before its ancestors
       const detail::Node& child = t_.nodes()[ch];
