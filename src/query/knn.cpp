@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -110,12 +111,21 @@ class KnnSearch {
     std::size_t deepest = 0;
     path[0] = Step(t_.root(), t_.root_cell());
     if (inside_gap(path[0].cell()) > 0.0) {
+      // The way down compares the query's lattice index with the cells' integer walls: a guess
+      // where rounding puts it within an ulp of a wall, and harmless there, since only the
+      // search's order follows the path; what the search skips is decided by the walls in double.
+      std::array<std::int64_t, 3> index;
+      for (std::size_t a = 0; a < 3; ++a) {
+        index[a] = std::int64_t(std::floor((q_[a] - lattice.origin[a]) / lattice.unit));  // inside the root: no overflow
+      }
       while (!t_.nodes()[path[deepest].id].leaf && deepest + 1 < kMaxPath) {
-        const detail::Cell cell = path[deepest].cell();
-        const int o = lattice.octant(cell, q_);
-        const std::uint32_t child = t_.nodes().child(path[deepest].id, o);
+        const Step& at = path[deepest];
+        const std::int64_t half = lattice.side(at.depth) / 2;
+        const int o = int(index[0] >= at.lo[0] + half) | int(index[1] >= at.lo[1] + half) << 1 |
+                      int(index[2] >= at.lo[2] + half) << 2;
+        const std::uint32_t child = t_.nodes().child(at.id, o);
         if (child == detail::kNone) break;
-        path[deepest + 1] = Step(child, lattice.child(cell, o));
+        path[deepest + 1] = Step(child, lattice.child(at.cell(), o));
         ++deepest;
       }
     }
