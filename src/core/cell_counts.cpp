@@ -3,7 +3,6 @@
 #include "core/vector_clones.hpp"
 
 #include <algorithm>
-#include <cstring>
 
 namespace eco::detail {
 
@@ -31,16 +30,9 @@ std::uint64_t CellCounts::refuse_full_near_home(const std::uint64_t* slots, std:
                            (repeats_twice & after_two));
   }
   std::fill(passed, passed + n, std::uint8_t{0});
-  // the open keys as bits, eight verdicts a multiply
+  // the open keys as bits: those not full, and none past n
   std::fill(full.begin() + std::ptrdiff_t(n), full.end(), std::uint8_t{1});
-  std::uint64_t open = 0;
-  for (std::size_t w = 0; w < kMaxKeys / 8; ++w) {
-    std::uint64_t eight;
-    std::memcpy(&eight, full.data() + 8 * w, sizeof eight);
-    eight ^= 0x0101010101010101ull;
-    open |= std::uint64_t(verdict_bits(eight)) << (8 * w);
-  }
-  return open;
+  return ~flags_as_bits(full.data(), kMaxKeys);
 }
 
 }  // namespace eco::detail

@@ -13,6 +13,18 @@ namespace eco::detail {
 /// each byte's bit to a distinct place in the top byte.
 inline unsigned verdict_bits(std::uint64_t eight) { return unsigned((eight * 0x0102040810204080ull) >> 56); }
 
+/// Flags [0, n) (n <= 64; bytes 0 or 1, and 0 from n up to the next multiple of 8) as bits, flag
+/// i on bit i, eight a multiply.
+inline std::uint64_t flags_as_bits(const std::uint8_t* flag, std::size_t n) {
+  std::uint64_t bits = 0;
+  for (std::size_t w = 0; w < (n + 7) / 8; ++w) {
+    std::uint64_t eight;
+    std::memcpy(&eight, flag + 8 * w, sizeof eight);
+    bits |= std::uint64_t(verdict_bits(eight)) << (8 * w);
+  }
+  return bits;
+}
+
 /// Calls take(i) for each i < n whose flag[i] (0 or 1) is 1, in order.
 template <class Take>
 void for_each_set(const std::uint8_t* flag, std::size_t n, Take&& take) {

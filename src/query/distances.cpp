@@ -5,24 +5,8 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cstring>
 
 namespace eco::detail {
-
-namespace {
-
-/// flags[0, n) (0 or 1, zero past n up to the next multiple of 8) as bits, eight a multiply.
-std::uint64_t as_bits(const std::uint8_t* flags, std::size_t n) {
-  std::uint64_t bits = 0;
-  for (std::size_t w = 0; w < (n + 7) / 8; ++w) {
-    std::uint64_t eight;
-    std::memcpy(&eight, flags + 8 * w, sizeof eight);
-    bits |= std::uint64_t(verdict_bits(eight)) << (8 * w);
-  }
-  return bits;
-}
-
-}  // namespace
 
 ECO_VECTOR_CLONES
 std::uint64_t squared_distances(const float* x, const float* y, const float* z, std::size_t n,
@@ -36,7 +20,7 @@ std::uint64_t squared_distances(const float* x, const float* y, const float* z, 
     out[i] = d2;
     below[i] = std::uint8_t(d2 < bound);
   }
-  return as_bits(below, n);
+  return flags_as_bits(below, n);
 }
 
 ECO_VECTOR_CLONES
@@ -67,7 +51,7 @@ std::uint64_t at_most(const double* d2, std::size_t n, double bound) {
   assert(n <= kMaxDistances);
   std::uint8_t flags[kMaxDistances] = {};
   for (std::size_t i = 0; i < n; ++i) flags[i] = std::uint8_t(d2[i] <= bound);
-  return as_bits(flags, n);
+  return flags_as_bits(flags, n);
 }
 
 }  // namespace eco::detail

@@ -27,36 +27,40 @@ bool more_bits_than(std::uint64_t bits, std::size_t count) {
   return true;
 }
 
-/// Results as references to the held points (a leaf's block and an index in it), written out as
-/// Neighbors when the search ends: an insertion shifts 16 bytes an entry, not a Neighbor's 48.
+/// A result as a reference to a held point (a leaf's block and an index in it), written out as a
+/// Neighbor when the search ends: an insertion shifts 16 bytes an entry, not a Neighbor's 48.
 struct Candidate {
   double sq_dist;
   std::uint32_t link;
   std::uint32_t index;
 };
 
-class CandidateResults {
+/// Results ranked in a span of entries that carry their sq_dist, nearest first.
+template <class Entry>
+class RankedSpan {
  public:
-  explicit CandidateResults(std::span<Candidate> out) : out_(out) {}
+  explicit RankedSpan(std::span<Entry> out) : out_(out) {}
   [[nodiscard]] std::size_t capacity() const { return out_.size(); }
   [[nodiscard]] double sq_dist(std::size_t i) const { return out_[i].sq_dist; }
   void move_down(std::size_t i) { out_[i] = out_[i - 1]; }
+
+ protected:
+  std::span<Entry> out_;
+};
+
+class CandidateResults : public RankedSpan<Candidate> {
+ public:
+  using RankedSpan::RankedSpan;
   void put(std::size_t i, double d2, const detail::PointSpan&, std::uint32_t link, std::uint32_t j) {
     out_[i] = {d2, link, j};
   }
-
- private:
-  std::span<Candidate> out_;
 };
 
 /// Results as Neighbors: points in the anchor frame until the search ends (stored floats, held
 /// exactly in double), attributes as stored. For a k beyond CandidateResults' stack.
-class NeighborResults {
+class NeighborResults : public RankedSpan<Neighbor> {
  public:
-  explicit NeighborResults(std::span<Neighbor> out) : out_(out) {}
-  [[nodiscard]] std::size_t capacity() const { return out_.size(); }
-  [[nodiscard]] double sq_dist(std::size_t i) const { return out_[i].sq_dist; }
-  void move_down(std::size_t i) { out_[i] = out_[i - 1]; }
+  using RankedSpan::RankedSpan;
   void put(std::size_t i, double d2, const detail::PointSpan& c, std::uint32_t /*link*/, std::uint32_t j) {
     out_[i] = as_stored(c[j], d2);
   }
@@ -65,9 +69,6 @@ class NeighborResults {
   static Neighbor as_stored(const detail::StoredPoint& s, double d2) {
     return {{s.p[0], s.p[1], s.p[2]}, d2, {s.id, s.intensity, double(s.time)}};
   }
-
- private:
-  std::span<Neighbor> out_;
 };
 
 /// Results as ids and squared distances (nanoflann's style).
