@@ -18,9 +18,13 @@ std::uint64_t CellCounts::refuse_full_near_home(const std::uint64_t* slots, std:
   padded[0] = ~std::uint64_t{0};
   padded[1] = ~std::uint64_t{1};
   std::copy(keys, keys + n, padded.begin() + 2);
+  std::fill(padded.begin() + 2 + std::ptrdiff_t(n), padded.end(), std::uint64_t{0});
   const std::uint32_t after_one = limit == 1, after_two = limit == 2;
   std::array<std::uint8_t, kMaxKeys> full;
-  for (std::size_t k = 0; k < n; ++k) {  // without branches: vector code
+  // Every one of the kMaxKeys lanes, those past n on key 0 (their verdicts are overwritten below):
+  // a trip count the compiler knows. Over n, the vector loop had a scalar tail and, at AVX-512,
+  // ran only when n was 64.
+  for (std::size_t k = 0; k < kMaxKeys; ++k) {  // without branches: vector code
     const std::uint64_t key = padded[k + 2];
     const std::size_t at = home(key, shift);
     const std::uint64_t here = slots[at], next = slots[(at + 1) & last];
