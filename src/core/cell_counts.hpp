@@ -42,10 +42,13 @@ class CellCounts {
   }
 
   /// add_below(keys[i], limit) for i in [0, n), in order; passed[i] says whether it counted.
-  void add_below_each(const std::uint64_t* keys, std::size_t n, std::uint32_t limit, std::uint8_t* passed) {
+  /// Returns how many it counted.
+  std::size_t add_below_each(const std::uint64_t* keys, std::size_t n, std::uint32_t limit, std::uint8_t* passed) {
+    std::size_t counted = 0;
     for (std::size_t from = 0; from < n; from += kMaxKeys) {
-      add_below_some(keys + from, std::min(kMaxKeys, n - from), limit, passed + from);
+      counted += add_below_some(keys + from, std::min(kMaxKeys, n - from), limit, passed + from);
     }
+    return counted;
   }
 
   /// Starts loading the slots where the probes of keys[0, n) begin (a hint: no effect on the
@@ -97,12 +100,12 @@ class CellCounts {
   /// no load per key. A cell full when the keys arrive stays full through them (none is emptied
   /// here): the keys found full at or next to their home, or whose cell their predecessors fill,
   /// are refused in vector code, the others probed one by one.
-  void add_below_some(const std::uint64_t* keys, std::size_t n, std::uint32_t limit, std::uint8_t* passed) {
+  std::size_t add_below_some(const std::uint64_t* keys, std::size_t n, std::uint32_t limit, std::uint8_t* passed) {
     assert(n <= kMaxKeys);
     while (4 * (used_ + n) > 3 * slots_.size()) grow();
     std::uint64_t* const slots = slots_.data();
     const std::size_t last = slots_.size() - 1;
-    std::size_t used = used_;
+    std::size_t used = used_, taken = 0;
     for (std::uint64_t open = refuse_full_near_home(slots, last, shift_, keys, n, limit, passed); open != 0;
          open &= open - 1) {
       const auto k = std::size_t(std::countr_zero(open));
@@ -111,12 +114,14 @@ class CellCounts {
       const std::uint32_t count = count_of(slots[i]);
       const bool counted = count < limit;
       passed[k] = std::uint8_t(counted);
+      taken += counted;
       if (counted) {
         slots[i] = count == 0 ? key << kCountBits | 1u : slots[i] + 1;
         used += count == 0;
       }
     }
     used_ = used;
+    return taken;
   }
   /// Sets passed[0, n) = 0 (n <= kMaxKeys); returns the keys[k] left open as bit k: those whose
   /// cell does not hold `limit` points or more in their home slot or the next (of `slots`, size

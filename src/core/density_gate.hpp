@@ -1,10 +1,11 @@
 #pragma once
 // The density cap's verdicts on a frame's new points, in their order (the first points to reach a
-// full cell are the ones kept), judged a group at a time: the group's cells are found and their
-// hash slots prefetched before the first is asked, so the table's cache misses overlap instead of
-// following one another (a capped map's counts outgrow L1, and a scan visits its cells in no
+// full cell are the ones kept), judged a group at a time: the group's cells are found first, and
+// their hash slots are then loaded by one vector loop, so the table's cache misses overlap instead
+// of following one another (a capped map's counts outgrow L1, and a scan visits its cells in no
 // order a cache can guess). Shared by ECO and the flat baselines, so their caps cost alike.
-// Points leaving in bulk (a subtree dropped at the box's edge) leave their cells the same way.
+// Points leaving in bulk (a subtree dropped at the box's edge) leave their cells a group at a
+// time too, their slots prefetched, since each removal probes on its own.
 
 #include "core/cell_counts.hpp"
 #include "core/geometry.hpp"
@@ -32,13 +33,11 @@ inline constexpr std::size_t kDensityGroup = 64;
 void guess_cell_keys(const WorldGrid& grid, const std::array<float, 3>* points, std::size_t n, std::uint64_t* keys,
                      std::uint8_t* unsure);
 
-/// Finds the cells of points[0, n) (their keys) and starts loading their slots.
-inline void find_cells(const CellCounts& counts, const WorldGrid& grid, const std::array<float, 3>* points,
-                       std::uint64_t* keys, std::size_t n) {
+/// Finds the cells of points[0, n) (their keys).
+inline void find_cells(const WorldGrid& grid, const std::array<float, 3>* points, std::uint64_t* keys, std::size_t n) {
   std::array<std::uint8_t, kDensityGroup> unsure;
   guess_cell_keys(grid, points, n, keys, unsure.data());
   for_each_set(unsure.data(), n, [&](std::size_t i) { keys[i] = CellCounts::key(grid.index(points[i])); });
-  counts.prefetch_each(keys, n);
 }
 
 /// The density cap's verdicts on points[0, n) (stored coordinates, n <= kDensityGroup), in their
@@ -49,11 +48,8 @@ inline std::size_t judge_group(CellCounts& counts, const WorldGrid& grid, std::u
                                const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed) {
   assert(n <= kDensityGroup);
   std::array<std::uint64_t, kDensityGroup> keys;
-  find_cells(counts, grid, points, keys.data(), n);
-  counts.add_below_each(keys.data(), n, limit, passed);
-  std::size_t taken = 0;
-  for (std::size_t i = 0; i < n; ++i) taken += passed[i];
-  return n - taken;
+  find_cells(grid, points, keys.data(), n);  // no prefetch: add_below_each's vector loop loads the slots at once
+  return n - counts.add_below_each(keys.data(), n, limit, passed);
 }
 
 /// judge_group under `cap`; while the cap is off every point passes, counted nowhere.
@@ -67,14 +63,15 @@ inline std::size_t judge_group(CellCounts& counts, const WorldGrid& grid, const 
 }
 
 /// Calls produce(offer); each offer(p) hands the stored coordinates of a point that leaves, and
-/// its cell in `grid` forgets it — a group at a time, slots prefetched, as judge_group asks.
+/// its cell in `grid` forgets it — a group at a time, slots prefetched.
 template <class Produce>
 void forget_in_groups(CellCounts& counts, const WorldGrid& grid, Produce&& produce) {
   std::array<std::array<float, 3>, kDensityGroup> points;
   std::array<std::uint64_t, kDensityGroup> keys{};
   std::size_t held = 0;
   const auto forget = [&] {
-    find_cells(counts, grid, points.data(), keys.data(), held);
+    find_cells(grid, points.data(), keys.data(), held);
+    counts.prefetch_each(keys.data(), held);
     for (std::size_t i = 0; i < held; ++i) counts.remove(keys[i]);
     held = 0;
   };

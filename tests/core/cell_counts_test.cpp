@@ -62,14 +62,17 @@ TEST(CellCounts, GroupedAddsAreTheMapsKeyAfterKey) {
       keys.push_back(i > 0 && rng() % 3 == 0 ? keys.back() : CellCounts::key({cell(rng), cell(rng), cell(rng) / 6}));
     }
     passed.assign(n + 1, 7);
-    counts.add_below_each(keys.data(), n, limit, passed.data());
+    const std::size_t counted = counts.add_below_each(keys.data(), n, limit, passed.data());
+    std::size_t expected_counted = 0;
     for (std::size_t i = 0; i < n; ++i) {
       std::uint32_t& had = expected[keys[i]];
+      expected_counted += had < limit ? 1 : 0;
       ASSERT_EQ(passed[i], had < limit ? 1 : 0) << "group " << group << ", key " << i;
       if (had < limit) ++had;
       if (had == 0) expected.erase(keys[i]);
     }
     ASSERT_EQ(passed[n], 7) << "wrote past the group";
+    ASSERT_EQ(counted, expected_counted) << "group " << group;
     if (group % 7 == 0 && !expected.empty()) {  // removals between groups shift probe runs back
       const std::uint64_t key = expected.begin()->first;
       counts.remove(key);
