@@ -3,8 +3,6 @@
 #include "core/vector_clones.hpp"
 
 #include <algorithm>
-#include <bit>
-#include <type_traits>
 
 namespace eco::detail {
 
@@ -20,10 +18,7 @@ template <class Real>
   constexpr std::uint32_t kMask = (1u << CellCounts::kAxisBits) - 1;
   constexpr Real kSure = Real(WorldGrid::kSure);
   const std::uint32_t held = (above >= Real(0)) & (above < span);
-  // outside [0, span) the bits are cleared to 0.0: as a select, GCC moved the conversion below into
-  // the select's arm, where it may trap, and left the whole loop scalar
-  using Bits = std::conditional_t<sizeof(Real) == 4, std::uint32_t, std::uint64_t>;
-  const Real counted = std::bit_cast<Real>(std::bit_cast<Bits>(above) & (Bits{0} - Bits(held)));
+  const Real counted = held != 0 ? above : Real(0);
   const std::int32_t whole = std::int32_t(counted);
   const Real fraction = counted - Real(whole);
   sure &= held & (fraction > kSure) & (fraction < Real(1) - kSure);
@@ -34,7 +29,8 @@ template <class Real>
 constexpr std::size_t kFloatBlock = 16;
 
 /// The float guesses of points[0, kFloatBlock): a trip count the compiler knows and arrays that do
-/// not overlap, so the loop is vector code with neither a scalar tail nor run-time checks.
+/// not overlap, so the loop is vector code with neither a scalar tail nor run-time checks. (A loop
+/// over n took its AVX-512 code only for n = 64, GCC's threshold: smaller groups ran scalar.)
 [[gnu::always_inline]] inline void guess_float_block(const WorldGrid::Single& single,
                                                      const std::array<float, 3>* __restrict points,
                                                      std::uint64_t* __restrict keys, std::uint8_t* __restrict unsure) {
