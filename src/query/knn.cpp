@@ -115,15 +115,13 @@ class KnnSearch {
       // The way down compares the query's lattice index with the cells' integer walls: a guess
       // where rounding puts it within an ulp of a wall, and harmless there, since only the
       // search's order follows the path; what the search skips is decided by the walls in double.
-      std::array<std::int64_t, 3> index;
+      detail::Cell unit{{}, lattice.max_depth};  // the finest cell holding the query, as guessed
       for (std::size_t a = 0; a < 3; ++a) {
-        index[a] = std::int64_t(std::floor((q_[a] - lattice.origin[a]) / lattice.unit));  // inside the root: no overflow
+        unit.lo[a] = std::int64_t(std::floor((q_[a] - lattice.origin[a]) / lattice.unit));  // inside the root: no overflow
       }
       while (!t_.nodes()[path[deepest].id].leaf && deepest + 1 < kMaxPath) {
         const Step& at = path[deepest];
-        const std::int64_t half = lattice.side(at.depth) / 2;
-        const int o = int(index[0] >= at.lo[0] + half) | int(index[1] >= at.lo[1] + half) << 1 |
-                      int(index[2] >= at.lo[2] + half) << 2;
+        const int o = lattice.octant_of(at.cell(), unit);
         const std::uint32_t child = t_.nodes().child(at.id, o);
         if (child == detail::kNone) break;
         path[deepest + 1] = Step(child, lattice.child(at.cell(), o));
