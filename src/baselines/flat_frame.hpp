@@ -20,7 +20,7 @@ class FlatFrame {
  public:
   /// Throws std::invalid_argument for a bad configuration, an age limit, free-space clearing or
   /// kept attributes (`who` has none of them).
-  FlatFrame(const Config& config, const std::string& who) : cfg_(config) {
+  FlatFrame(const Config& config, const std::string& who) : cfg_(config), density_(config.density_cap.max_points) {
     cfg_.validate();
     if (cfg_.max_age_frames > 0) {
       throw std::invalid_argument("the " + who + " baseline has no age limit (max_age_frames = " +

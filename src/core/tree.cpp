@@ -13,7 +13,8 @@ namespace eco::detail {
 Tree::Tree(const Config& config)
     : cfg_(config),
       points_(Columns{config.max_age_frames > 0, config.attributes.ids, config.attributes.intensity,
-                      config.attributes.time}) {
+                      config.attributes.time}),
+      density_(config.density_cap.max_points) {
   cfg_.validate();
   min_leaf_depth_ = cfg_.recentring == Recentring::Quantised ? int(cfg_.quantum_levels) : 0;
   keeps_subcells_ = cfg_.recentring == Recentring::Quantised;
