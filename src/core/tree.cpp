@@ -253,9 +253,12 @@ namespace {
 template <class T>
 void trim(std::vector<T>& buffer, std::size_t used) {
   // Below this (~110 KB of points) a buffer comes from the heap's free lists, not fresh pages:
-  // not worth keeping for a map that takes in few points a frame (a capped one).
+  // not worth keeping for a map that takes in few points a frame (a capped one), so it is given
+  // back; a larger one is kept at what the frames use.
   constexpr std::size_t kKeep = 1 << 12;
-  if (buffer.capacity() > kKeep && buffer.capacity() > 3 * used) {
+  if (buffer.capacity() <= kKeep) {
+    std::vector<T>().swap(buffer);
+  } else if (buffer.capacity() > 3 * used) {
     std::vector<T>().swap(buffer);
     buffer.reserve(used);
   }
