@@ -251,12 +251,12 @@ void Tree::prefetch_start_node(std::size_t from, const std::vector<std::uint32_t
 namespace {
 
 template <class T>
-void trim(std::vector<T>& buffer, std::size_t used) {
-  // Below this (~110 KB of points) a buffer comes from the heap's free lists, not fresh pages:
-  // not worth keeping for a map that takes in few points a frame (a capped one), so it is given
-  // back; a larger one is kept at what the frames use.
+void trim(std::vector<T>& buffer, std::size_t used, std::size_t most_bytes) {
+  // Below this (~110 KB of points) a buffer comes from the heap's free lists, not fresh pages: not
+  // worth keeping for a map that takes in few points a frame (a capped one), so it is given back,
+  // as is one larger than `most_bytes`; the others are kept at what the frames use.
   constexpr std::size_t kKeep = 1 << 12;
-  if (buffer.capacity() <= kKeep) {
+  if (buffer.capacity() <= kKeep || buffer.capacity() * sizeof(T) > most_bytes) {
     std::vector<T>().swap(buffer);
   } else if (buffer.capacity() > 3 * used) {
     std::vector<T>().swap(buffer);
@@ -276,11 +276,12 @@ void Tree::give_back_memory(std::size_t floor) {
 }
 
 void Tree::trim_buffers(std::size_t used) {
-  std::apply([&](auto&... typed) { ((trim(typed.scan, used), trim(typed.points, used)), ...); },
+  const std::size_t most = points_.bytes() / kBufferShare;
+  std::apply([&](auto&... typed) { ((trim(typed.scan, used, most), trim(typed.points, used, most)), ...); },
              batch_buffers_.by_type);
-  trim(batch_buffers_.slot_of, used);
-  trim(batch_buffers_.codes, used);
-  trim(scratch_, used);
+  trim(batch_buffers_.slot_of, used, most);
+  trim(batch_buffers_.codes, used, most);
+  trim(scratch_, used, most);
 }
 
 std::size_t Tree::buffer_bytes() const {

@@ -283,8 +283,11 @@ class Tree {
   /// The start-depth cell whose slot is `slot` (start_slot's inverse).
   [[nodiscard]] Cell start_cell(std::uint32_t slot) const;
   /// Gives back the working buffers' memory when it is far above the `used` points a frame needs
-  /// now (a first frame that took a whole map in), so they keep what steady frames use.
+  /// now (a first frame that took a whole map in), so they keep what steady frames use; a buffer
+  /// of a few thousand points, or more than a kBufferShare of the point pools' bytes (a capped
+  /// map's), is given back whole after each update.
   void trim_buffers(std::size_t used);
+  static constexpr std::size_t kBufferShare = 16;
   /// Bytes held by the working buffers.
   [[nodiscard]] std::size_t buffer_bytes() const;
 
