@@ -113,7 +113,7 @@ class Tree {
   /// are released. No point changes, only where it lies.
   void give_back_memory(std::size_t floor = kMemoryFloor);
   static constexpr std::size_t kFreeShare = 16;                       // a sixteenth
-  static constexpr std::size_t kMemoryFloor = std::size_t{1} << 16;   // below, not worth it (a capped map holds 0.2-2 MB)
+  static constexpr std::size_t kMemoryFloor = std::size_t{1} << 14;   // below, not worth it (four pages)
   static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
 
   // --- insertion --------------------------------------------------------------------------------
