@@ -78,14 +78,15 @@ class CellCounts {
     if (slots_.empty()) return;
     const std::size_t slot = find(block_of(key));
     if (!occupied(slot)) return;
-    const Count at = locate(slot, key);
-    const std::uint32_t bits = at.bits();
-    if (bits == 0) return;
-    if (bits == full_bits() && take_extra(key)) return;
-    at.word() -= std::uint64_t{1} << at.shift;
-    if (bits > 1) return;
+    const Place at = place_of(key);
+    const std::uint32_t held = bits(slot, at);
+    if (held == 0) return;
+    if (held == full_bits() && take_extra(key)) return;
+    word(slot, at) -= std::uint64_t{1} << at.shift;
+    if (held > 1) return;
     --cells_;
-    if (std::all_of(&at.slot[1], &at.slot[stride_], [](std::uint64_t w) { return w == 0; })) erase_at(slot);
+    const auto counts = slots_.begin() + std::ptrdiff_t(slot * stride_);
+    if (std::all_of(counts + 1, counts + std::ptrdiff_t(stride_), [](std::uint64_t w) { return w == 0; })) erase_at(slot);
   }
 
   /// Points counted in `key`'s cell.
@@ -149,23 +150,24 @@ class CellCounts {
     return std::size_t((block * 0x9E3779B97F4A7C15ull) >> shift);  // Fibonacci hashing
   }
 
-  /// A cell's count in its block's words.
-  struct Count {
-    std::uint64_t* slot;
-    std::uint32_t word_index, shift, mask;
-    [[nodiscard]] std::uint64_t& word() const { return slot[1 + word_index]; }
-    [[nodiscard]] std::uint32_t bits() const { return std::uint32_t(word() >> shift) & mask; }
+  /// Where a cell's count lies in its block's words: word 1 + word_index of the slot, from bit shift.
+  struct Place {
+    std::uint32_t word_index, shift;
   };
-  [[nodiscard]] Count locate(std::size_t slot, std::uint64_t key) const {
+  [[nodiscard]] Place place_of(std::uint64_t key) const {
     const std::uint32_t bit = cell_of(key) * std::uint32_t(width_);
-    return {const_cast<std::uint64_t*>(slots_.data()) + slot * stride_, bit >> 6, bit & 63, full_bits()};
+    return {bit >> 6, bit & 63};
+  }
+  [[nodiscard]] std::uint64_t& word(std::size_t slot, Place at) { return slots_[slot * stride_ + 1 + at.word_index]; }
+  [[nodiscard]] std::uint32_t bits(std::size_t slot, Place at) const {
+    return std::uint32_t(slots_[slot * stride_ + 1 + at.word_index] >> at.shift) & full_bits();
   }
   [[nodiscard]] std::uint32_t full_bits() const { return std::uint32_t((std::uint64_t{1} << width_) - 1); }
   [[nodiscard]] std::uint32_t count_at(std::size_t slot, std::uint64_t key) const {
-    const std::uint32_t bits = locate(slot, key).bits();
-    if (bits != full_bits()) return bits;
+    const std::uint32_t held = bits(slot, place_of(key));
+    if (held != full_bits()) return held;
     const auto extra = extra_.find(key);
-    return bits + (extra == extra_.end() ? 0 : extra->second);
+    return held + (extra == extra_.end() ? 0 : extra->second);
   }
   /// Takes one from the side table's count of `key`; false when it holds none.
   bool take_extra(std::uint64_t key) {
@@ -199,11 +201,11 @@ class CellCounts {
         ++blocks_;
       }
       cells_ += count == 0;
-      const Count at = locate(slot, key);
-      if (at.bits() == full_bits()) {
+      const Place at = place_of(key);
+      if (bits(slot, at) == full_bits()) {
         ++extra_[key];
       } else {
-        at.word() += std::uint64_t{1} << at.shift;
+        word(slot, at) += std::uint64_t{1} << at.shift;
       }
     }
     return taken;
