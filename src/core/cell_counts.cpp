@@ -33,7 +33,7 @@ std::uint64_t CellCounts::refuse_full_near_home(const Table& table, const std::u
     const std::size_t at = home(block_of(key), shift), next = (at + 1) & last;
     const std::uint64_t here_holds = slots[at * stride] == tag, next_holds = slots[next * stride] == tag;
     const std::size_t slot = next ^ ((at ^ next) & (0 - here_holds));  // at where it holds the block
-    const std::uint64_t bit = ((key & 3) | ((key >> kAxisBits) & 3) << 2 | ((key >> (2 * kAxisBits)) & 3) << 4) * width;
+    const std::uint64_t bit = std::uint64_t(cell_of(key)) * width;
     const std::uint64_t count = (slots[slot * stride + 1 + (bit >> 6)] >> (bit & 63)) & mask;
     const std::uint64_t repeats = padded[k + 1] == key, repeats_twice = repeats & (padded[k] == key);
     full[k] = std::uint8_t(((here_holds | next_holds) & (count >= at_least)) | (repeats & after_one) |

@@ -85,8 +85,8 @@ class CellCounts {
     word(slot, at) -= std::uint64_t{1} << at.shift;
     if (held > 1) return;
     --cells_;
-    const auto counts = slots_.begin() + std::ptrdiff_t(slot * stride_);
-    if (std::all_of(counts + 1, counts + std::ptrdiff_t(stride_), [](std::uint64_t w) { return w == 0; })) erase_at(slot);
+    const std::uint64_t* const words = slot_at(slot);
+    if (std::all_of(words + 1, words + stride_, [](std::uint64_t w) { return w == 0; })) erase_at(slot);
   }
 
   /// Points counted in `key`'s cell.
@@ -108,7 +108,7 @@ class CellCounts {
   void for_each(F&& f) const {
     for (std::size_t slot = 0; slot < capacity(); ++slot) {
       if (!occupied(slot)) continue;
-      const std::uint64_t block = slots_[slot * stride_] & ~kOccupied;
+      const std::uint64_t block = slot_at(slot)[0] & ~kOccupied;
       for (std::uint32_t cell = 0; cell < kBlockCells; ++cell) {
         const std::uint64_t key = block | key_of_cell(cell);
         const std::uint32_t n = count_at(slot, key);
@@ -158,16 +158,22 @@ class CellCounts {
     const std::uint32_t bit = cell_of(key) * std::uint32_t(width_);
     return {bit >> 6, bit & 63};
   }
-  [[nodiscard]] std::uint64_t& word(std::size_t slot, Place at) { return slots_[slot * stride_ + 1 + at.word_index]; }
+  /// A slot's words: its tag (0 when empty), then its block's counts.
+  [[nodiscard]] std::uint64_t* slot_at(std::size_t slot) { return slots_.data() + slot * stride_; }
+  [[nodiscard]] const std::uint64_t* slot_at(std::size_t slot) const { return slots_.data() + slot * stride_; }
+  [[nodiscard]] std::uint64_t& word(std::size_t slot, Place at) { return slot_at(slot)[1 + at.word_index]; }
   [[nodiscard]] std::uint32_t bits(std::size_t slot, Place at) const {
-    return std::uint32_t(slots_[slot * stride_ + 1 + at.word_index] >> at.shift) & full_bits();
+    return std::uint32_t(slot_at(slot)[1 + at.word_index] >> at.shift) & full_bits();
   }
   [[nodiscard]] std::uint32_t full_bits() const { return std::uint32_t((std::uint64_t{1} << width_) - 1); }
-  [[nodiscard]] std::uint32_t count_at(std::size_t slot, std::uint64_t key) const {
-    const std::uint32_t held = bits(slot, place_of(key));
+  /// The count of `key`'s cell whose bits read `held`: with the side table's excess when they are full.
+  [[nodiscard]] std::uint32_t with_extra(std::uint64_t key, std::uint32_t held) const {
     if (held != full_bits()) return held;
     const auto extra = extra_.find(key);
     return held + (extra == extra_.end() ? 0 : extra->second);
+  }
+  [[nodiscard]] std::uint32_t count_at(std::size_t slot, std::uint64_t key) const {
+    return with_extra(key, bits(slot, place_of(key)));
   }
   /// Takes one from the side table's count of `key`; false when it holds none.
   bool take_extra(std::uint64_t key) {
@@ -190,19 +196,19 @@ class CellCounts {
       const auto k = std::size_t(std::countr_zero(open));
       const std::uint64_t key = keys[k];
       const std::size_t slot = probe(table, home(block_of(key), shift_), block_of(key));
-      const bool present = occupied(slot);
-      const std::uint32_t count = present ? count_at(slot, key) : 0;
+      const Place at = place_of(key);
+      const std::uint32_t held = bits(slot, at);  // 0 in an empty slot: all its words are
+      const std::uint32_t count = with_extra(key, held);
       const bool counted = count < limit;
       passed[k] = std::uint8_t(counted);
       if (!counted) continue;
       ++taken;
-      if (!present) {
-        slots_[slot * stride_] = block_of(key) | kOccupied;
+      if (!occupied(slot)) {
+        slot_at(slot)[0] = block_of(key) | kOccupied;
         ++blocks_;
       }
       cells_ += count == 0;
-      const Place at = place_of(key);
-      if (bits(slot, at) == full_bits()) {
+      if (held == full_bits()) {
         ++extra_[key];
       } else {
         word(slot, at) += std::uint64_t{1} << at.shift;
@@ -230,7 +236,7 @@ class CellCounts {
                                              std::uint32_t limit, std::uint8_t* passed);
 
   [[nodiscard]] std::size_t capacity() const { return slots_.size() / stride_; }
-  [[nodiscard]] bool occupied(std::size_t slot) const { return slots_[slot * stride_] != 0; }
+  [[nodiscard]] bool occupied(std::size_t slot) const { return slot_at(slot)[0] != 0; }
   /// The slot of `block`, or the empty slot that ends its probe run (the table is not empty).
   [[nodiscard]] std::size_t find(std::uint64_t block) const { return probe(view(), home(block, shift_), block); }
   /// From slot i on: the slot holding `block`, or the empty slot ending its probe run.
@@ -249,22 +255,22 @@ class CellCounts {
     for (std::size_t from = 0; from < old.size(); from += stride_) {
       if (old[from] == 0) continue;
       const std::size_t to = probe(table, home(old[from] & ~kOccupied, shift_), old[from]);
-      std::copy_n(&old[from], stride_, &slots_[to * stride_]);
+      std::copy_n(&old[from], stride_, slot_at(to));
     }
   }
 
   /// Empties slot `hole` and moves later members of its probe run back so no lookup breaks.
   void erase_at(std::size_t hole) {
     const std::size_t last = capacity() - 1;
-    std::fill_n(&slots_[hole * stride_], stride_, 0);
+    std::fill_n(slot_at(hole), stride_, 0);
     --blocks_;
     for (std::size_t i = (hole + 1) & last; occupied(i); i = (i + 1) & last) {
-      const std::size_t want = home(slots_[i * stride_] & ~kOccupied, shift_);
+      const std::size_t want = home(slot_at(i)[0] & ~kOccupied, shift_);
       // slot i may move to the hole when its home is not in the cyclic range (hole, i]
       const bool stays = hole <= i ? (hole < want && want <= i) : (hole < want || want <= i);
       if (stays) continue;
-      std::copy_n(&slots_[i * stride_], stride_, &slots_[hole * stride_]);
-      std::fill_n(&slots_[i * stride_], stride_, 0);
+      std::copy_n(slot_at(i), stride_, slot_at(hole));
+      std::fill_n(slot_at(i), stride_, 0);
       hole = i;
     }
   }
