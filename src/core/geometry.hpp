@@ -218,12 +218,16 @@ struct Lattice {
   /// (float) or a query (double).
   template <class Coordinate>
   [[nodiscard]] int octant(const Cell& c, const std::array<Coordinate, 3>& p) const {
+    return octant_within(middle(c), double(p[0]), double(p[1]), double(p[2]));
+  }
+  /// The walls between the children of `c`, one per axis: octant()'s, found once for many points.
+  [[nodiscard]] std::array<double, 3> middle(const Cell& c) const {
     const std::int64_t half = side(c.depth) / 2;
-    int o = 0;
-    for (int a = 0; a < 3; ++a) {
-      if (double(p[a]) >= wall(a, c.lo[a] + half)) o |= 1 << a;
-    }
-    return o;
+    return {wall(0, c.lo[0] + half), wall(1, c.lo[1] + half), wall(2, c.lo[2] + half)};
+  }
+  /// The octant of (x, y, z) among the children whose walls are `middle`.
+  [[nodiscard]] static int octant_within(const std::array<double, 3>& middle, double x, double y, double z) {
+    return int(x >= middle[0]) | int(y >= middle[1]) << 1 | int(z >= middle[2]) << 2;
   }
   /// Which child of `c` holds the smaller cell `inner` (integer walls only: exact).
   [[nodiscard]] int octant_of(const Cell& c, const Cell& inner) const {

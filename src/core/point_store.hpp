@@ -103,6 +103,26 @@ class PointStore {
     }
   }
 
+  /// Appends the points source[picked[0]], ..., source[picked[n - 1]] (of another block of this
+  /// store) to the block at `link`, as append() does.
+  void append_picked(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const PointSpan& source,
+                     const std::uint32_t* picked, std::uint32_t n, std::uint32_t room = 0) {
+    if (n == 0) return;
+    reserve(link, owner, count, count + n, room);
+    const Block b = block(link);
+    const auto gather = [&](auto* to, const auto* from) {
+      if (from == nullptr) return;  // a column not kept
+      for (std::uint32_t i = 0; i < n; ++i) to[count + i] = from[picked[i]];
+    };
+    gather(b.x, source.x);
+    gather(b.x + b.capacity, source.y);
+    gather(b.x + 2 * std::size_t(b.capacity), source.z);
+    gather(b.stamps, source.stamps);
+    gather(b.ids, source.ids);
+    gather(b.intensities, source.intensities);
+    gather(b.times, source.times);
+  }
+
   /// The `count` points of the block at `link`.
   [[nodiscard]] PointSpan span(std::uint32_t link, std::uint32_t count) const {
     if (link == kNone) return {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, 0};

@@ -282,12 +282,13 @@ void Tree::trim_buffers(std::size_t used) {
   trim(batch_buffers_.slot_of, used, most);
   trim(batch_buffers_.codes, used, most);
   trim(scratch_, used, most);
+  trim(split_order_, used, most);
 }
 
 std::size_t Tree::buffer_bytes() const {
   const BatchBuffers& b = batch_buffers_;
   const std::size_t batches = std::apply([](const auto&... typed) { return (typed.bytes() + ...); }, b.by_type);
-  return batches + scratch_.capacity() * sizeof(StoredPoint) +
+  return batches + scratch_.capacity() * sizeof(StoredPoint) + split_order_.capacity() * sizeof(std::uint32_t) +
          (b.slot_of.capacity() + b.codes.capacity() + b.group_start.capacity()) * sizeof(std::uint32_t) +
          (clearing_memory_.image.storage.capacity() + clearing_memory_.before.storage.capacity() +
           clearing_memory_.pixel_tables.capacity()) *
@@ -330,13 +331,8 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
   }
   // Partition by octant into `temp` (a counting sort); the children read from there and use
   // this range as theirs. Bounds and ages are taken once, at the leaves, and summed on the way up.
-  const std::int64_t half = lattice_.side(cell.depth) / 2;
-  const std::array<double, 3> wall{lattice_.wall(0, cell.lo[0] + half), lattice_.wall(1, cell.lo[1] + half),
-                                   lattice_.wall(2, cell.lo[2] + half)};
-  auto octant = [&](const Point& s) {
-    return int(double(s.p[0]) >= wall[0]) | int(double(s.p[1]) >= wall[1]) << 1 |
-           int(double(s.p[2]) >= wall[2]) << 2;
-  };
+  const std::array<double, 3> middle = lattice_.middle(cell);
+  auto octant = [&](const Point& s) { return Lattice::octant_within(middle, s.p[0], s.p[1], s.p[2]); };
   // the range's two halves counted and scattered side by side, each with its own cursors: two
   // chains of increments, not one (a scan's points come in runs of one octant)
   const std::uint32_t h = m / 2;
@@ -387,38 +383,37 @@ std::uint32_t Tree::child_or_new(std::uint32_t id, const Cell& cell, int octant)
 }
 
 void Tree::split(std::uint32_t id, const Cell& cell, const std::array<std::uint32_t, 8>& incoming) {
-  const std::size_t base = scratch_.size();
-  points_.drain(nodes_[id].link, nodes_[id].count, scratch_);
+  const std::uint32_t m = nodes_[id].count;
+  std::uint32_t block = std::exchange(nodes_[id].link, kNone);  // released once the children hold its points
   nodes_.make_inner(id);
-  // Group the points by octant (a counting sort behind them), then hand each child its group.
-  const std::size_t m = scratch_.size() - base;
+  const PointSpan points = points_.span(block, m);
+  // Each point's octant found once, then the points' indices grouped by octant (a counting sort):
+  // each child copies its points straight from the block's columns.
+  split_order_.resize(2 * std::size_t(m));
+  std::uint32_t* const octant = split_order_.data();
+  std::uint32_t* const grouped = octant + m;
+  const std::array<double, 3> middle = lattice_.middle(cell);
+  for (std::uint32_t i = 0; i < m; ++i) {
+    octant[i] = std::uint32_t(Lattice::octant_within(middle, points.x[i], points.y[i], points.z[i]));
+  }
   std::array<std::uint32_t, 9> begin{};
-  for (std::size_t i = base; i < base + m; ++i) ++begin[std::size_t(lattice_.octant(cell, scratch_[i].p)) + 1];
+  for (std::uint32_t i = 0; i < m; ++i) ++begin[octant[i] + 1];
   for (std::size_t o = 0; o < 8; ++o) begin[o + 1] += begin[o];
   std::array<std::uint32_t, 8> at{};
   std::copy(begin.begin(), begin.end() - 1, at.begin());
-  scratch_.resize(base + 2 * m);
-  StoredPoint* grouped = scratch_.data() + base + m;
-  for (std::size_t i = base; i < base + m; ++i) {
-    grouped[at[std::size_t(lattice_.octant(cell, scratch_[i].p))]++] = scratch_[i];
-  }
+  for (std::uint32_t i = 0; i < m; ++i) grouped[at[octant[i]]++] = i;
   for (int o = 0; o < 8; ++o) {
-    const StoredPoint* from = grouped + begin[std::size_t(o)];
-    const StoredPoint* to = grouped + begin[std::size_t(o) + 1];
-    if (from == to) continue;
+    const std::uint32_t own = begin[std::size_t(o) + 1] - begin[std::size_t(o)];
+    if (own == 0) continue;
     const std::uint32_t child = child_or_new(id, cell, o);
-    Node& n = nodes_[child];
-    const auto own = std::uint32_t(to - from);
     const std::uint32_t all = own + incoming[std::size_t(o)];
-    points_.append(n.link, child, n.count, from, to, all <= cfg_.leaf_capacity ? all : 0);
-    n.count += own;
-    for (const StoredPoint* s = from; s != to; ++s) {
-      n.bounds.grow(s->p[0], s->p[1], s->p[2]);
-      n.oldest = std::min(n.oldest, age_key(*s));
-    }
-    if (keeps_subcells_) n.set_subcells(Subcells(lattice_, lattice_.child(cell, o)).bits(from, to));
+    Node& n = nodes_[child];
+    points_.append_picked(n.link, child, 0, points, grouped + begin[std::size_t(o)], own,
+                          all <= cfg_.leaf_capacity ? all : 0);
+    n.count = own;
+    fit_leaf(child, keeps_subcells_ ? Subcells(lattice_, lattice_.child(cell, o)) : Subcells());
   }
-  scratch_.resize(base);
+  points_.release(block);
   for (int o = 0; o < 8; ++o) {
     const std::uint32_t ch = nodes_.child(id, o);
     if (ch != kNone && nodes_[ch].count > cfg_.leaf_capacity && cell.depth + 1 < lattice_.max_depth) {
@@ -432,22 +427,16 @@ void Tree::split(std::uint32_t id, const Cell& cell, const std::array<std::uint3
 
 void Tree::refit(std::uint32_t id) {
   Node& n = nodes_[id];
-  Aabb bounds;
-  std::uint32_t oldest = kNone;
   if (n.leaf) {
-    // the subcells in the same pass (Quantised mode); a point names its leaf's cell
+    // a point names its leaf's cell, whose subcells a leaf keeps in Quantised mode
     const PointSpan s = points_.span(n.link, n.count);
     const bool marks = keeps_subcells_ && n.count > 0;
-    const Subcells quarters = marks ? Subcells(lattice_, lattice_.cell_at(n.depth, {s.x[0], s.y[0], s.z[0]})) : Subcells();
-    std::uint64_t subcells = 0;
-    for (std::uint32_t i = 0; i < n.count; ++i) {
-      const StoredPoint p = s[i];
-      bounds.grow(p.p[0], p.p[1], p.p[2]);
-      oldest = std::min(oldest, age_key(p));
-      if (marks) subcells |= std::uint64_t{1} << quarters.of(p.p);
-    }
-    n.set_subcells(subcells);
-  } else {
+    fit_leaf(id, marks ? Subcells(lattice_, lattice_.cell_at(n.depth, {s.x[0], s.y[0], s.z[0]})) : Subcells());
+    return;
+  }
+  Aabb bounds;
+  std::uint32_t oldest = kNone;
+  {
     std::uint32_t count = 0;
     for (int o = 0; o < 8; ++o) {
       const std::uint32_t ch = nodes_.child(id, o);
@@ -460,6 +449,26 @@ void Tree::refit(std::uint32_t id) {
   }
   nodes_[id].bounds = bounds;
   nodes_[id].oldest = oldest;
+}
+
+void Tree::fit_leaf(std::uint32_t id, const Subcells& quarters) {
+  Node& n = nodes_[id];
+  const PointSpan s = points_.span(n.link, n.count);
+  // column by column, each loop vector code; the age keys read only where a column holds them
+  Aabb bounds;
+  for (std::uint32_t i = 0; i < n.count; ++i) bounds.grow(s.x[i], s.y[i], s.z[i]);
+  const bool aged = s.stamps != nullptr || s.times != nullptr;
+  std::uint32_t oldest = n.count > 0 && !aged ? age_key(StoredPoint{}) : kNone;
+  if (aged) {
+    for (std::uint32_t i = 0; i < n.count; ++i) oldest = std::min(oldest, age_key(s[i]));
+  }
+  std::uint64_t subcells = 0;
+  if (keeps_subcells_) {
+    for (std::uint32_t i = 0; i < n.count; ++i) subcells |= std::uint64_t{1} << quarters.of({s.x[i], s.y[i], s.z[i]});
+  }
+  n.set_subcells(subcells);
+  n.bounds = bounds;
+  n.oldest = oldest;
 }
 
 void Tree::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {

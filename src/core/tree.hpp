@@ -25,6 +25,8 @@
 
 namespace eco::detail {
 
+class Subcells;
+
 /// Nodes at one depth, indexed by their cell: where insertion starts instead of the root
 /// (the paper's movement-aware start depth; in Quantised mode depth k, a direct lattice lookup).
 struct StartTable {
@@ -206,6 +208,9 @@ class Tree {
   void unlink_child(std::uint32_t id, int octant) { nodes_.child(id, octant) = kNone; }
   /// Recomputes count, bounds and oldest stamp of `id` from its points or children.
   void refit(std::uint32_t id);
+  /// Recomputes bounds, oldest stamp and (Quantised mode) subcells of leaf `id` from its points,
+  /// `quarters` being its cell's.
+  void fit_leaf(std::uint32_t id, const Subcells& quarters);
   /// Whether `id` (inner) holds so few points that it should be one leaf.
   [[nodiscard]] bool should_collapse(std::uint32_t id) const;
   /// Turns inner node `id` into one leaf holding all the points below it.
@@ -304,7 +309,8 @@ class Tree {
   StartTable start_;
   CellCounts density_;  // points per density-cap cell, kept while the cap is on
   WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
-  std::vector<StoredPoint> scratch_;  // points of a leaf being split or a subtree collapsed
+  std::vector<StoredPoint> scratch_;  // points of a subtree collapsed
+  std::vector<std::uint32_t> split_order_;  // a leaf being split: its points' octants, then their order
   template <class Point>
   struct PointBuffers {
     std::vector<Point> scan, points;

@@ -1,5 +1,5 @@
 // PointStore, the leaves' point blocks, against a vector per leaf: appends that grow a block
-// through its size classes, in-place retains that shrink it, drains and releases, for sets of
+// through its size classes (of ranges, and of points picked from another block), in-place retains that shrink it, drains and releases, for sets of
 // optional columns (stamps, ids, intensities, times); released blocks are reused before the pools
 // grow, and compaction moves blocks to the pools' front and gives the emptied pages back.
 
@@ -61,7 +61,7 @@ Columns columns_of(int mask) { return {(mask & 1) != 0, (mask & 2) != 0, (mask &
 
 class PointStoreModel : public ::testing::TestWithParam<int> {};
 
-TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndReleases) {
+TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsPicksRetainsDrainsAndReleases) {
   const Columns kept = columns_of(GetParam());
   PointStore store(kept);
   constexpr int kLeaves = 64;
@@ -75,7 +75,7 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndRelea
     std::uint32_t& link = links[leaf];
     std::vector<StoredPoint>& expected = model[leaf];
     const auto count = std::uint32_t(expected.size());
-    switch (rng() % 8) {
+    switch (rng() % 9) {
       case 0: {  // retain: drop points below a random x
         const float cut = coord(rng);
         const std::uint32_t left = store.retain(link, count, [&](const StoredPoint& s) { return s.p[0] >= cut; });
@@ -110,6 +110,17 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsRetainsDrainsAndRelea
           }
         }
         break;
+      case 4: {  // append points picked from another leaf's block, in any order and repeated
+        const std::size_t other = (leaf + 1 + rng() % (kLeaves - 1)) % kLeaves;
+        const std::vector<StoredPoint>& source = model[other];
+        if (source.empty()) break;
+        std::vector<std::uint32_t> picked(1 + rng() % 40);
+        for (std::uint32_t& i : picked) i = std::uint32_t(rng() % source.size());
+        store.append_picked(link, std::uint32_t(leaf), count, store.span(links[other], std::uint32_t(source.size())),
+                            picked.data(), std::uint32_t(picked.size()), rng() % 2 == 0 ? 0u : count + 60u);
+        for (const std::uint32_t i : picked) expected.push_back(source[i]);
+        break;
+      }
       default: {  // append a range, now and then a long one (large classes)
         const std::size_t m = rng() % 10 == 0 ? rng() % 3000 : 1 + rng() % 20;
         std::vector<StoredPoint> batch(m);
