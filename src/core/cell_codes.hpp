@@ -73,6 +73,20 @@ void guess_cell_codes(const CodeGrid& grid, const float* points, std::size_t str
   return grid;
 }
 
+/// The subcells (core/subcells.hpp: bit x + 4 y + 16 z, a quarter of a cell along each axis) that
+/// points occupy in a cell whose two levels below are the six bits of their codes from `shift`
+/// (the upper level in the upper three), as bits. Those levels' walls are the quarters' walls, so
+/// they are Subcells' bits, found without a comparison.
+[[nodiscard]] inline std::uint64_t subcells_of_codes(const std::uint32_t* codes, std::size_t n, int shift) {
+  std::uint64_t out = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t v = codes[i] >> shift;  // octant bits: x in 0 and 3, y in 1 and 4, z in 2 and 5
+    const std::uint32_t x = (v >> 2 & 2) | (v & 1), y = (v >> 3 & 2) | (v >> 1 & 1), z = (v >> 4 & 2) | (v >> 2 & 1);
+    out |= std::uint64_t{1} << (x | y << 2 | z << 4);
+  }
+  return out;
+}
+
 /// The code of p (inside `cell`) by the octant tests the tree descends by: a level at a time,
 /// the wall between the halves decides.
 [[nodiscard]] inline std::uint32_t settled_code(const Lattice& lattice, const Cell& cell, const CodeGrid& grid,

@@ -55,7 +55,13 @@ Tree::Added Tree::descend_sorted(std::uint32_t id, const Cell& cell, int level, 
   const auto m = std::uint32_t(to - from);
   if (level == kCodeLevels || cell.depth >= lattice_.max_depth ||
       (nodes_[id].leaf && nodes_[id].count + m <= cfg_.leaf_capacity)) {
-    return insert_range(id, cell, from, to, temp);  // a leaf with room, or below the coded levels
+    // a leaf with room, or below the coded levels; a leaf's subcells are read off the codes where
+    // they name the two levels below it (its quarter walls are theirs: four lattice units or more)
+    std::optional<std::uint64_t> subcells;
+    if (keeps_subcells_ && level + 2 <= kCodeLevels && lattice_.side(cell.depth) >= 4) {
+      subcells = subcells_of_codes(codes, m, 3 * (kCodeLevels - 2 - level));
+    }
+    return insert_range(id, cell, from, to, temp, subcells);
   }
   const int shift = 3 * (kCodeLevels - 1 - level);
   if (nodes_[id].leaf) {  // it holds at most leaf_capacity: its children need no split

@@ -314,7 +314,8 @@ std::uint32_t Tree::start_node(const Cell& cell, Cell& at) {
 }
 
 template <class Point>
-Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp) {
+Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp,
+                               std::optional<std::uint64_t> subcells) {
   const auto m = std::uint32_t(to - from);
   Added added;
   if (nodes_[id].leaf && (nodes_[id].count + m <= cfg_.leaf_capacity || cell.depth >= lattice_.max_depth)) {
@@ -325,7 +326,7 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
       added.bounds.grow(s->p[0], s->p[1], s->p[2]);
       added.oldest = std::min(added.oldest, age_key(as_stored(*s)));
     }
-    if (keeps_subcells_) n.set_subcells(n.subcells() | Subcells(lattice_, cell).bits(from, to));
+    if (keeps_subcells_) n.set_subcells(n.subcells() | (subcells ? *subcells : Subcells(lattice_, cell).bits(from, to)));
     added.add_to(n);
     return added;
   }
@@ -370,6 +371,12 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
   added.add_to(nodes_[id]);
   return added;
 }
+
+// sorted_insert.cpp calls them too
+template Tree::Added Tree::insert_range(std::uint32_t, const Cell&, StoredPoint*, StoredPoint*, StoredPoint*,
+                                        std::optional<std::uint64_t>);
+template Tree::Added Tree::insert_range(std::uint32_t, const Cell&, BarePoint*, BarePoint*, BarePoint*,
+                                        std::optional<std::uint64_t>);
 
 std::uint32_t Tree::child_or_new(std::uint32_t id, const Cell& cell, int octant) {
   std::uint32_t ch = nodes_.child(id, octant);

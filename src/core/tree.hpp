@@ -265,9 +265,11 @@ class Tree {
   };
   /// Inserts points [from, to), all inside `cell`, into the subtree at `id`, partitioning them
   /// into `temp` (room for as many; both ranges are overwritten); the caller adds them to the
-  /// ancestors. Returns their bounds and oldest age key.
+  /// ancestors. Returns their bounds and oldest age key. `subcells`, where the caller knows them,
+  /// are the points' subcells in `cell` (for a leaf that takes them all).
   template <class Point>
-  Added insert_range(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp);
+  Added insert_range(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp,
+                     std::optional<std::uint64_t> subcells = std::nullopt);
   /// insert_range for many points (src/core/sorted_insert.cpp): sorted by the cells they fall in
   /// a few levels down, found at once, so that those levels read their children's ranges instead
   /// of partitioning them. `codes` and `codes_temp` have room for as many points.

@@ -1,16 +1,19 @@
 // guess_cell_codes, the cells a few levels below a lattice cell for many points in vector code,
 // against the octant tests the tree descends by: wherever a guess is sure it names the cell those
 // tests lead to, on walls, a float below them and between them, near the lattice's origin and far
-// from it; points outside the cell, and NaN, are never sure.
+// from it; points outside the cell, and NaN, are never sure. The subcells read off the codes are
+// the ones the quarter walls give.
 
 #include "core/cell_codes.hpp"
 #include "core/geometry.hpp"
 #include "core/point_store.hpp"
+#include "core/subcells.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 #include <vector>
 
@@ -153,6 +156,58 @@ TEST(CellCodes, FoundCodesAreTheOctantTestsForEveryPoint) {
         const std::uint32_t want = descended_code(lattice, cell, levels, bare[i].p, grid.shift);
         ASSERT_EQ(from_bare[i], want) << "depth " << depth << ", point " << i << (guessable ? "" : ", walls alone");
         ASSERT_EQ(from_stored[i], want) << "depth " << depth << ", point " << i << (guessable ? "" : ", walls alone");
+      }
+    }
+  }
+}
+
+TEST(CellCodes, SubcellsOfCodesAreTheQuarterCellsTheWallsGive) {
+  // every cell some levels below the coded one (with two coded levels below it), its points' codes
+  // against Subcells' comparisons, for points on the walls, a float above them and between them
+  Lattice lattice;
+  lattice.origin = {-1023.95, 2047.3, -511.05};
+  lattice.unit = 0.05;
+  lattice.max_depth = 9;
+  std::mt19937 rng(11);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (const int depth : {0, 3, 5}) {
+    const int levels = std::min(kCodeLevels, lattice.max_depth - depth);
+    const Cell cell{{3 * lattice.side(depth), -lattice.side(depth), 0}, depth};
+    const std::int64_t step = lattice.side(depth + levels);
+    std::uniform_int_distribution<std::int64_t> wall(0, lattice.side(depth) / step - 1);
+    std::vector<BarePoint> points(3000);
+    for (BarePoint& b : points) {
+      for (int a = 0; a < 3; ++a) {
+        const double w = lattice.wall(a, cell.lo[a] + wall(rng) * step);
+        float f = float(w);
+        if (double(f) < w) f = std::nextafter(f, kInf);
+        if (rng() % 3 == 0) f = std::nextafter(f, kInf);
+        if (rng() % 3 == 1) f = float(w + 0.5 * double(step) * lattice.unit);
+        b.p[std::size_t(a)] = f;
+      }
+    }
+    const CodeGrid grid = code_grid(lattice, cell, levels, 3 * (kCodeLevels - levels));
+    std::vector<std::uint32_t> codes(points.size());
+    std::vector<std::uint8_t> unsure(points.size());
+    find_cell_codes(lattice, cell, grid, points.data(), points.size(), codes.data(), unsure.data());
+    for (int level = 0; level + 2 <= levels; ++level) {
+      std::map<std::array<std::int64_t, 3>, std::vector<std::size_t>> by_cell;  // the points of each cell `level` down
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        Cell c = cell;
+        for (int l = 0; l < level; ++l) c = lattice.child(c, lattice.octant(c, points[i].p));
+        by_cell[c.lo].push_back(i);
+      }
+      for (const auto& [lo, members] : by_cell) {
+        const Cell c{lo, depth + level};
+        std::vector<std::uint32_t> their_codes;
+        std::uint64_t want = 0;
+        for (const std::size_t i : members) {
+          their_codes.push_back(codes[i]);
+          want |= std::uint64_t{1} << Subcells(lattice, c).of(points[i].p);
+        }
+        const int shift = grid.shift + 3 * (levels - 2 - level);
+        ASSERT_EQ(subcells_of_codes(their_codes.data(), their_codes.size(), shift), want)
+            << "depth " << depth << ", level " << level;
       }
     }
   }
