@@ -60,16 +60,6 @@ class CellCounts {
     return counted;
   }
 
-  /// Starts loading the slots where the probes of keys[0, n) begin (a hint: no effect on the
-  /// counts); the table's address and shift read once, not once a key.
-  void prefetch_each(const std::uint64_t* keys, std::size_t n) const {
-    if (slots_.empty()) return;
-    const std::uint64_t* const slots = slots_.data();
-    const int shift = shift_;
-    const std::size_t stride = stride_;
-    for (std::size_t i = 0; i < n; ++i) __builtin_prefetch(slots + home(block_of(keys[i]), shift) * stride);
-  }
-
   /// Counts one point in `key`'s cell, whatever it holds already (up to kMaxCount).
   void add(std::uint64_t key) { add_below(key, kMaxCount); }
 

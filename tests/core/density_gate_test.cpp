@@ -65,8 +65,7 @@ TEST(DensityGate, GuessedKeysAreTheGridsKeys) {
           ++sure;
         }
       }
-      CellCounts counts;
-      find_cells(counts, grid, &points[begin], keys.data(), n);
+      find_cells(grid, &points[begin], keys.data(), n);
       for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(keys[i], CellCounts::key(grid.index(points[begin + i])));
       begin += n;
     }
