@@ -31,6 +31,25 @@ std::uint32_t descended_code(const Lattice& lattice, Cell cell, int levels, cons
   return code << shift;
 }
 
+/// A point inside `cell`, on each axis on one of the walls `step` lattice units apart below it (the
+/// first float at or above the wall), or halfway to the next wall, or (kinds 3) the float above
+/// the wall's: each of the `kinds` as likely.
+BarePoint point_on_walls(const Lattice& lattice, const Cell& cell, std::int64_t step, std::mt19937& rng, int kinds) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  std::uniform_int_distribution<std::int64_t> wall(0, lattice.side(cell.depth) / step - 1);
+  BarePoint b;
+  for (int a = 0; a < 3; ++a) {
+    const double w = lattice.wall(a, cell.lo[a] + wall(rng) * step);
+    float f = float(w);
+    if (double(f) < w) f = std::nextafter(f, kInf);
+    const auto kind = int(rng() % unsigned(kinds));
+    if (kind == 1) f = float(w + 0.5 * double(step) * lattice.unit);  // between walls
+    if (kind == 2) f = std::nextafter(f, kInf);
+    b.p[std::size_t(a)] = f;
+  }
+  return b;
+}
+
 TEST(CellCodes, CompactBitsUndoesSpreadBits) {
   for (std::uint32_t j = 0; j < (1u << kCodeLevels); ++j) {
     EXPECT_EQ(compact_bits(spread_bits(j)), j);
@@ -118,28 +137,16 @@ TEST(CellCodes, SureGuessesNameTheCellsTheOctantTestsLeadTo) {
 TEST(CellCodes, FoundCodesAreTheOctantTestsForEveryPoint) {
   // find_cell_codes: the guesses where sure, the walls elsewhere, and the walls alone for a grid
   // too far out for guesses (as if its walls lay beyond 2^36 of its cells)
-  Lattice lattice;
-  lattice.origin = {-3.3, 1.7, 0.4};
-  lattice.unit = 0.05;
-  lattice.max_depth = 9;
+  const Lattice lattice{{-3.3, 1.7, 0.4}, 0.05, 9};
   std::mt19937 rng(8);
-  constexpr float kInf = std::numeric_limits<float>::infinity();
   for (const int depth : {0, 3, 5}) {
     const int levels = std::min(kCodeLevels, lattice.max_depth - depth);
     const Cell cell{{-lattice.side(depth), 0, 2 * lattice.side(depth)}, depth};
     const std::int64_t step = lattice.side(depth + levels);
-    std::uniform_int_distribution<std::int64_t> wall(0, lattice.side(depth) / step - 1);
     std::vector<BarePoint> bare;
     std::vector<StoredPoint> stored;
     for (int i = 0; i < 500; ++i) {
-      BarePoint b;
-      for (int a = 0; a < 3; ++a) {
-        const double w = lattice.wall(a, cell.lo[a] + wall(rng) * step);
-        float f = float(w);
-        if (double(f) < w) f = std::nextafter(f, kInf);
-        if (rng() % 2 == 0) f = float(w + 0.5 * double(step) * lattice.unit);  // between walls
-        b.p[std::size_t(a)] = f;
-      }
+      const BarePoint b = point_on_walls(lattice, cell, step, rng, 2);
       ASSERT_TRUE(lattice.contains(cell, b.p));
       bare.push_back(b);
       stored.push_back(StoredPoint{b.p, 7, 8, 9.0f, 10.0f});
@@ -164,28 +171,14 @@ TEST(CellCodes, FoundCodesAreTheOctantTestsForEveryPoint) {
 TEST(CellCodes, SubcellsOfCodesAreTheQuarterCellsTheWallsGive) {
   // every cell some levels below the coded one (with two coded levels below it), its points' codes
   // against Subcells' comparisons, for points on the walls, a float above them and between them
-  Lattice lattice;
-  lattice.origin = {-1023.95, 2047.3, -511.05};
-  lattice.unit = 0.05;
-  lattice.max_depth = 9;
+  const Lattice lattice{{-1023.95, 2047.3, -511.05}, 0.05, 9};
   std::mt19937 rng(11);
-  constexpr float kInf = std::numeric_limits<float>::infinity();
   for (const int depth : {0, 3, 5}) {
     const int levels = std::min(kCodeLevels, lattice.max_depth - depth);
     const Cell cell{{3 * lattice.side(depth), -lattice.side(depth), 0}, depth};
     const std::int64_t step = lattice.side(depth + levels);
-    std::uniform_int_distribution<std::int64_t> wall(0, lattice.side(depth) / step - 1);
     std::vector<BarePoint> points(3000);
-    for (BarePoint& b : points) {
-      for (int a = 0; a < 3; ++a) {
-        const double w = lattice.wall(a, cell.lo[a] + wall(rng) * step);
-        float f = float(w);
-        if (double(f) < w) f = std::nextafter(f, kInf);
-        if (rng() % 3 == 0) f = std::nextafter(f, kInf);
-        if (rng() % 3 == 1) f = float(w + 0.5 * double(step) * lattice.unit);
-        b.p[std::size_t(a)] = f;
-      }
-    }
+    for (BarePoint& b : points) b = point_on_walls(lattice, cell, step, rng, 3);
     const CodeGrid grid = code_grid(lattice, cell, levels, 3 * (kCodeLevels - levels));
     std::vector<std::uint32_t> codes(points.size());
     std::vector<std::uint8_t> unsure(points.size());
