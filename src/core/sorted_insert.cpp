@@ -73,7 +73,9 @@ Tree::Added Tree::descend_sorted(std::uint32_t id, const Cell& cell, int level, 
   Added added;
   for (std::uint32_t begin = 0, end = 0; begin < m; begin = end) {  // an octant's points lie together, in order
     const std::uint32_t octant = (codes[begin] >> shift) & 7u;
-    while (end < m && ((codes[end] >> shift) & 7u) == octant) ++end;
+    // the codes share the levels above and are sorted: the run ends at the first higher octant
+    const std::uint32_t last_of_run = (codes[begin] >> shift << shift) | ((1u << shift) - 1);
+    end = std::uint32_t(std::upper_bound(codes + begin, codes + m, last_of_run) - codes);
     const std::uint32_t ch = child_or_new(id, cell, int(octant));
     added.merge(descend_sorted(ch, lattice_.child(cell, int(octant)), level + 1, from + begin, from + end,
                                temp + begin, codes + begin));
