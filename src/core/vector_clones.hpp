@@ -7,7 +7,7 @@
 // otherwise than the scalar code the results must equal.
 //
 // ECO_WIDE_VECTOR_CLONES adds a clone for AVX-512 (x86-64-v4: eight double lanes), for loops whose
-// arithmetic is in double, where it measured faster than AVX2 (docs/benchmarks.md); for float
+// arithmetic is in double, where it measured faster than AVX2 (docs/benchmark-history.md); for float
 // loops it did not.
 //
 // The tests build the loops once more for one target alone (tests/core/CMakeLists.txt), so that
