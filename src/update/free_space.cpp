@@ -77,7 +77,7 @@ void stream_points(const std::vector<Visit>& visits, Sink& sink) {
     const float* x = leaf.x;
     const float* y = x + leaf.stride;
     const float* z = y + leaf.stride;
-    for (std::uint32_t i = 0; i < leaf.points; ++i) sink.add(x[i], y[i], z[i], leaf.first + i);
+    sink.add_columns(x, y, z, leaf.points, leaf.first);
   }
   sink.flush();
 }

@@ -13,6 +13,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -111,6 +112,23 @@ class Sink {
     stored_.x[k] = x, stored_.y[k] = y, stored_.z[k] = z;
     tags_[k] = tag;
     if (stored_.size == PixelLookup::kGroup) send();
+  }
+  /// add(x[i], y[i], z[i], first_tag + i) for i in [0, n): a leaf's columns, a group's room at a
+  /// time (no test per point of whether the group is full).
+  void add_columns(const float* x, const float* y, const float* z, std::uint32_t n, std::uint32_t first_tag) {
+    while (n > 0) {
+      const std::size_t k = stored_.size;
+      const auto take = std::uint32_t(std::min<std::size_t>(n, PixelLookup::kGroup - k));
+      for (std::uint32_t i = 0; i < take; ++i) {  // a plain loop: a call to memmove a column cost more
+        stored_.x[k + i] = x[i], stored_.y[k + i] = y[i], stored_.z[k + i] = z[i];
+        tags_[k + i] = first_tag + i;
+      }
+      stored_.size += take;
+      if (stored_.size == PixelLookup::kGroup) send();
+      x += take, y += take, z += take;
+      first_tag += take;
+      n -= take;
+    }
   }
   /// Sends what is left, then the stream's own leftovers.
   void flush() {
