@@ -81,9 +81,8 @@ void guess_cell_codes(const CodeGrid& grid, const float* points, std::size_t str
 [[nodiscard]] inline std::uint64_t subcells_of_codes(const std::uint32_t* codes, std::size_t n, int shift) {
   std::uint64_t out = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t v = codes[i] >> shift;  // octant bits: x in 0 and 3, y in 1 and 4, z in 2 and 5
-    const std::uint32_t x = (v >> 2 & 2) | (v & 1), y = (v >> 3 & 2) | (v >> 1 & 1), z = (v >> 4 & 2) | (v >> 2 & 1);
-    out |= std::uint64_t{1} << (x | y << 2 | z << 4);
+    const std::uint32_t v = (codes[i] >> shift) & 0x3Fu;  // two levels' octants: x in bits 0 and 3
+    out |= std::uint64_t{1} << (compact_bits(v) | compact_bits(v >> 1) << 2 | compact_bits(v >> 2) << 4);
   }
   return out;
 }
@@ -112,10 +111,8 @@ template <class Point>
 void find_cell_codes(const Lattice& lattice, const Cell& cell, const CodeGrid& grid, const Point* points, std::size_t n,
                      std::uint32_t* codes, std::uint8_t* unsure) {
   static_assert(sizeof(Point) == 3 * sizeof(float) || sizeof(Point) == 7 * sizeof(float));
-  const auto settle = [&](std::size_t i) {
-    assert(lattice.contains(cell, points[i].p));
-    codes[i] = settled_code(lattice, cell, grid, points[i].p);
-  };
+  assert(std::all_of(points, points + n, [&](const Point& s) { return lattice.contains(cell, s.p); }));
+  const auto settle = [&](std::size_t i) { codes[i] = settled_code(lattice, cell, grid, points[i].p); };
   if (!grid.guessable) {
     for (std::size_t i = 0; i < n; ++i) settle(i);
     return;
