@@ -8,15 +8,16 @@
 //
 // Two passes. The first reads the tree: it notes the nodes the sensor may see (look_into), then
 // streams their leaves' points into the pixel lookup in full groups across leaves, rotated into
-// the sensor's frame in vector code (stream_points), each point's verdict kept by its index. The
-// second rewrites only the leaves that lost points, and the nodes above them (plan_clearing,
-// Clearing).
+// the sensor's frame in vector code (stream_points); the judge's screen rules out most of each
+// group at once, and the numbers of the points seen through are kept. The second rewrites only
+// the leaves that lost points, and the nodes above them (plan_clearing, Clearing).
 
 #include "update/pixel_stream.hpp"
 #include "update/scan_judge.hpp"
 #include "update/stages.hpp"
 #include "update/subtree_filter.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace eco::detail {
@@ -24,8 +25,8 @@ namespace {
 
 /// A node the first pass looked into, in the order it did (preorder). A leaf's points (`points`
 /// of them; 0, with stride 0, for an inner node) lie in its block's columns, x from `x`, y and z
-/// `stride` floats further each (while the tree is unchanged: the first pass only), and have
-/// verdicts [first, first + points).
+/// `stride` floats further each (while the tree is unchanged: the first pass only), and are
+/// numbered [first, first + points).
 struct Visit {
   std::uint32_t id;
   std::uint32_t parent;  // its parent's Visit, kNone for the root
@@ -35,7 +36,8 @@ struct Visit {
   std::uint32_t stride;
   const float* x;
 };
-using Verdicts = std::vector<char>;
+/// The numbers of the points seen through, in increasing order.
+using SeenPoints = std::vector<std::uint32_t>;
 
 /// Pass 1, the nodes: appends to `visits` the nodes under `id` whose bounds `sight` may see;
 /// returns the points their leaves hold, numbered from `first`.
@@ -60,7 +62,7 @@ std::uint32_t look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, c
 }
 
 /// Pass 1, the points: streams every visited leaf's points into `sink`, tagged with their
-/// verdicts' index, a group at a time across leaves; the leaves' columns are asked for a few
+/// numbers, a group at a time across leaves; the leaves' columns are asked for a few
 /// leaves ahead.
 template <class Sink>
 void stream_points(const std::vector<Visit>& visits, Sink& sink) {
@@ -82,13 +84,17 @@ void stream_points(const std::vector<Visit>& visits, Sink& sink) {
   sink.flush();
 }
 
-/// Pass 2's plan from pass 1's visits and verdicts: per node id, 0 where nothing below was seen
-/// through, else its Visit + 1.
-std::vector<std::uint32_t> plan_clearing(const Tree& t, std::vector<Visit>& visits, const Verdicts& verdicts) {
+/// Pass 2's plan from pass 1's visits and the points seen through: per node id, 0 where nothing
+/// below was seen through, else its Visit + 1.
+std::vector<std::uint32_t> plan_clearing(const Tree& t, std::vector<Visit>& visits, const SeenPoints& seen) {
+  std::size_t k = 0;
+  for (Visit& visit : visits) {  // preorder: the leaves' numbers rise
+    const std::size_t before = k;
+    while (k < seen.size() && seen[k] < visit.first + visit.points) ++k;
+    visit.seen = std::uint32_t(k - before);
+  }
   for (std::size_t v = visits.size(); v-- > 0;) {  // children before their parents
-    Visit& visit = visits[v];
-    for (std::uint32_t i = 0; i < visit.points; ++i) visit.seen += std::uint32_t(verdicts[visit.first + i]);
-    if (visit.parent != kNone) visits[visit.parent].seen += visit.seen;
+    if (visits[v].parent != kNone) visits[visits[v].parent].seen += visits[v].seen;
   }
   std::vector<std::uint32_t> plan(t.nodes().id_bound(), 0);
   for (std::size_t v = 0; v < visits.size(); ++v) {
@@ -101,8 +107,8 @@ std::vector<std::uint32_t> plan_clearing(const Tree& t, std::vector<Visit>& visi
 class Clearing {
  public:
   Clearing(Tree& tree, const std::vector<std::uint32_t>& plan, const std::vector<Visit>& visits,
-           const Verdicts& verdicts)
-      : t_(tree), plan_(plan), visits_(visits), verdicts_(verdicts) {}
+           const SeenPoints& seen)
+      : t_(tree), plan_(plan), visits_(visits), seen_(seen) {}
 
   [[nodiscard]] Verdict judge(std::uint32_t id, const Node&) const {
     return plan_[id] != 0 ? Verdict::LookInside : Verdict::KeepAll;
@@ -110,7 +116,12 @@ class Clearing {
   void drop(std::uint32_t) {}  // never judged DropAll
   bool filter_leaf(std::uint32_t id) {
     std::uint32_t i = visits_[plan_[id] - 1].first;  // retain() asks in order
-    t_.retain(id, [&](const StoredPoint&) { return verdicts_[i++] == 0; });
+    auto next = std::lower_bound(seen_.begin(), seen_.end(), i);
+    t_.retain(id, [&](const StoredPoint&) {
+      const bool through = next != seen_.end() && *next == i++;
+      next += through ? 1 : 0;
+      return !through;
+    });
     return true;
   }
 
@@ -118,7 +129,7 @@ class Clearing {
   Tree& t_;
   const std::vector<std::uint32_t>& plan_;
   const std::vector<Visit>& visits_;
-  const Verdicts& verdicts_;
+  const SeenPoints& seen_;
 };
 
 /// Clears from `tree` and `displaced` what `judge` sees through.
@@ -132,21 +143,22 @@ void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judge& judg
   });
   if (tree.root() == kNone) return;
   std::vector<Visit> visits;
-  Verdicts verdicts;
-  std::size_t seen = 0;
-  verdicts.resize(look_into(tree, tree.root(), kNone, judge.sight, visits, 0));
+  look_into(tree, tree.root(), kNone, judge.sight, visits, 0);
+  SeenPoints seen;
   const auto take = [&](std::uint32_t tag, std::uint32_t pixel, double squared_range) {
-    const bool through = judge.seen_through(pixel, squared_range);
-    verdicts[tag] = char(through);
-    seen += std::size_t(through);
+    if (judge.seen_through(pixel, squared_range)) seen.push_back(tag);
   };
-  PixelStream<decltype(take), PixelLookup::Reach::SquaredRange> stream(pixels, take);
+  const auto screen = [&](const auto& pixels_of, const auto& squared, std::size_t size) {
+    return judge.seen_through.screen(pixels_of, squared, size);
+  };
+  PixelStream<decltype(take), PixelLookup::Reach::SquaredRange, decltype(screen)> stream(pixels, take, screen);
   Sink sink(judge.sight.pose(), stream);
   stream_points(visits, sink);
-  stats.cleared += seen;
-  if (seen == 0) return;
-  const std::vector<std::uint32_t> plan = plan_clearing(tree, visits, verdicts);
-  Clearing clearing(tree, plan, visits, verdicts);
+  stats.cleared += seen.size();
+  if (seen.empty()) return;
+  std::sort(seen.begin(), seen.end());  // tier 1's undecided points came later
+  const std::vector<std::uint32_t> plan = plan_clearing(tree, visits, seen);
+  Clearing clearing(tree, plan, visits, seen);
   if (filter_subtree(tree, tree.root(), clearing) == Filtered::Gone) {
     tree.place_root(tree.root_cell(), tree.lattice());
   }

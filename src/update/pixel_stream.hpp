@@ -2,47 +2,66 @@
 // Pixels for many points, each tier of PixelLookup on full groups: tier 1 runs on each group of
 // points handed in (each point tagged), and the points it leaves undecided (the simulator casts one
 // ray in ten on a column's wall) wait for a group of their own for tiers 2 and 3, instead of
-// taking them one by one beside it.
+// taking them one by one beside it. A screen may rule out, a group at a time in vector code, the
+// points whose pixel and reach the caller has no use for (free-space clearing's judges: most held
+// points are not seen through), so that only the others are handed over one by one.
 
 #include "update/pixel_lookup.hpp"
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 
 namespace eco::detail {
 
+/// A PixelStream's screen that rules out no point.
+struct EveryPoint {};
+
 /// Calls take(tag, pixel, reach) once for every point pushed — its pixel as PixelLookup::pixel_of
 /// gives it (or kOutside) and its range |v| (kReach Range) or the square of it (SquaredRange) —
-/// not in the order pushed; flush() hands back the last ones.
-template <class Take, PixelLookup::Reach kReach = PixelLookup::Reach::Range>
+/// not in the order pushed; flush() hands back the last ones. With a screen, only for the points
+/// it does not rule out: screen(pixels, reaches, size) gives, of a group's lanes [0, size) from
+/// tier 1, as bits (lane i on bit i), those left kUndecided and those whose pixel and reach the
+/// caller may want.
+template <class Take, PixelLookup::Reach kReach = PixelLookup::Reach::Range, class Screen = EveryPoint>
 class PixelStream {
  public:
   static constexpr std::size_t kGroup = PixelLookup::kGroup;
 
-  PixelStream(const PixelLookup& lookup, Take take) : lookup_(lookup), take_(std::move(take)) {}
+  PixelStream(const PixelLookup& lookup, Take take, Screen screen = {})
+      : lookup_(lookup), take_(std::move(take)), screen_(std::move(screen)) {}
 
   /// A group of sensor-frame points, lane i tagged tags[i].
   void push_group(const PixelLookup::Group& points, const std::array<std::uint32_t, kGroup>& tags) {
     lookup_.first_tier_of(points, pixels_, reaches_, kReach);
-    for (std::size_t i = 0; i < points.size; ++i) {
-      if (pixels_[i] != PixelLookup::kUndecided) {
-        take_(tags[i], pixels_[i], reaches_[i]);
-        continue;
+    if constexpr (std::is_same_v<Screen, EveryPoint>) {
+      for (std::size_t i = 0; i < points.size; ++i) pass_on(points, tags, i);
+    } else {
+      for (std::uint32_t lanes = screen_(pixels_, reaches_, points.size); lanes != 0; lanes &= lanes - 1) {
+        pass_on(points, tags, std::size_t(std::countr_zero(lanes)));
       }
-      const std::size_t j = left_.size++;
-      left_.x[j] = points.x[i], left_.y[j] = points.y[i], left_.z[j] = points.z[i];
-      left_reaches_[j] = reaches_[i];
-      left_tags_[j] = tags[i];
-      if (left_.size == kGroup) run_left();
     }
   }
   /// Answers the points still waiting.
   void flush() { run_left(); }
 
  private:
+  /// Lane i of the group pushed: taken, or left for tiers 2 and 3.
+  void pass_on(const PixelLookup::Group& points, const std::array<std::uint32_t, kGroup>& tags, std::size_t i) {
+    if (pixels_[i] != PixelLookup::kUndecided) {
+      take_(tags[i], pixels_[i], reaches_[i]);
+      return;
+    }
+    const std::size_t j = left_.size++;
+    left_.x[j] = points.x[i], left_.y[j] = points.y[i], left_.z[j] = points.z[i];
+    left_reaches_[j] = reaches_[i];
+    left_tags_[j] = tags[i];
+    if (left_.size == kGroup) run_left();
+  }
   void run_left() {
     std::array<double, kGroup> ranges = left_reaches_;
     if constexpr (kReach == PixelLookup::Reach::SquaredRange) {
@@ -55,6 +74,7 @@ class PixelStream {
 
   const PixelLookup& lookup_;
   Take take_;
+  [[no_unique_address]] Screen screen_;
   std::array<std::uint32_t, kGroup> pixels_{};  // tier 1's answers for the group pushed
   std::array<double, kGroup> reaches_{};
   PixelLookup::Group left_;  // the points tier 1 left, waiting for a group of their own

@@ -30,6 +30,8 @@ class RangeImage {
 
   /// The nearest return around `pixel` (not kOutside) [m]; kNoReturn when a row around it got none.
   [[nodiscard]] double nearest_around(std::uint32_t pixel) const { return around_[pixel]; }
+  /// Every pixel's nearest_around, by index.
+  [[nodiscard]] std::span<const double> image() const { return around_; }
 
  private:
   std::span<const double> around_;  // in the caller's storage

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 namespace eco::detail {
@@ -74,6 +75,7 @@ class Sight {
 
 /// The scan's verdict on held points: seen through or not.
 class SeenThrough {
+  static_assert(PixelLookup::kGroup <= 32, "a group's lanes are the bits of a 32-bit mask");
  public:
   SeenThrough(RangeImage image, double margin) : image_(image), margin_(margin) {}
   /// For a held point at `pixel` (or kOutside), |v|^2 = `squared_range` from the sensor: a pixel
@@ -83,8 +85,21 @@ class SeenThrough {
     const double nearest = image_.nearest_around(pixel);
     return nearest != RangeImage::kNoReturn && lies_beyond(nearest, squared_range, margin_);
   }
+  /// A PixelStream's screen: of a group's lanes [0, `size`) from tier 1 (`pixels`, squared ranges
+  /// `squared`), as bits (lane i on bit i), those tier 1 left undecided and those this verdict may
+  /// call seen through; it calls no other lane seen through. In vector code (scan_judge.cpp).
+  [[nodiscard]] std::uint32_t screen(const std::array<std::uint32_t, PixelLookup::kGroup>& pixels,
+                                     const std::array<double, PixelLookup::kGroup>& squared, std::size_t size) const;
 
  private:
+  /// screen's lanes, every one of them (those from `size` up flagged 0), over the image's
+  /// `pixel_count` pixels: a lane whose pixel is not in the image reads pixel 0, and is flagged
+  /// only where tier 1 left it undecided. Static, its inputs handed in, for the compiler to
+  /// vectorise.
+  static std::uint32_t screen_group(const double* image, std::uint32_t pixel_count, double margin,
+                                    const std::array<std::uint32_t, PixelLookup::kGroup>& pixels,
+                                    const std::array<double, PixelLookup::kGroup>& squared, std::size_t size);
+
   RangeImage image_;  // a view of storage the tree keeps
   double margin_ = 0.0;
 };

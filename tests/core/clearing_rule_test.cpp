@@ -1,5 +1,6 @@
 // lies_beyond against the clearing rule's comparison written out (nearest > sqrt(squared) +
-// margin in double): at random, and at every double around the line where the answer flips.
+// margin in double): at random, and at every double around the line where the answer flips; and
+// its screen, may_lie_beyond, never 0 where the rule holds.
 
 #include "update/clearing_rule.hpp"
 
@@ -18,7 +19,7 @@ TEST(ClearingRule, LiesBeyondIsTheRuleAsWrittenEvenWhereRoundingDecides) {
   std::mt19937 rng(12);
   std::uniform_real_distribution<double> range(0.0, 150.0), margin(0.01, 5.0), unit(0.0, 1.0);
   std::uniform_int_distribution<int> steps(-60, 60);
-  std::size_t beyond = 0, near_line = 0;
+  std::size_t beyond = 0, near_line = 0, ruled_out = 0;
   for (int i = 0; i < 200000; ++i) {
     const double m = i % 7 == 0 ? 0.01 : margin(rng);
     double nearest = range(rng);
@@ -30,11 +31,19 @@ TEST(ClearingRule, LiesBeyondIsTheRuleAsWrittenEvenWhereRoundingDecides) {
     if (i % 3 == 0) squared = range(rng) * range(rng);  // anywhere
     ASSERT_EQ(lies_beyond(nearest, squared, m), as_written(nearest, squared, m))
         << std::hexfloat << nearest << " " << squared << " " << m;
-    beyond += as_written(nearest, squared, m) ? 1 : 0;
+    if (as_written(nearest, squared, m)) {
+      ASSERT_EQ(may_lie_beyond(nearest, squared, m), 1u) << std::hexfloat << nearest << " " << squared << " " << m;
+    }
     const double root = std::sqrt(squared);
+    if (root + m > nearest * (1.0 + 1e-6)) {  // well short of the line: the screen rules it out
+      ASSERT_EQ(may_lie_beyond(nearest, squared, m), 0u) << nearest << " " << squared << " " << m;
+      ++ruled_out;
+    }
+    beyond += as_written(nearest, squared, m) ? 1 : 0;
     near_line += std::abs(root + m - nearest) < 1e-12 * nearest ? 1 : 0;
   }
   EXPECT_GT(beyond, 20000u);
+  EXPECT_GT(ruled_out, 20000u);
   EXPECT_GT(near_line, 20000u);  // the cases rounding decides were reached
   constexpr double kInf = std::numeric_limits<double>::infinity(), kNaN = std::numeric_limits<double>::quiet_NaN();
   for (const double nearest : {0.0, 0.01, 0.3, 0.30000000000000004, 1.0, 80.0, kInf}) {
@@ -42,6 +51,9 @@ TEST(ClearingRule, LiesBeyondIsTheRuleAsWrittenEvenWhereRoundingDecides) {
       for (const double m : {0.01, 0.3, 1e5}) {
         EXPECT_EQ(lies_beyond(nearest, squared, m), as_written(nearest, squared, m))
             << nearest << " " << squared << " " << m;
+        if (as_written(nearest, squared, m)) {
+          EXPECT_EQ(may_lie_beyond(nearest, squared, m), 1u) << nearest << " " << squared;
+        }
       }
     }
   }
