@@ -21,10 +21,7 @@ void ArrivalCheck::operator()(const std::vector<Point>& batch) {
   const auto take = [&](std::uint32_t tag, std::uint32_t pixel, double squared_range) {
     if (judge_.seen_through(pixel, squared_range)) leaving_.push_back(as_stored(batch[tag]));
   };
-  const auto screen = [&](const auto& pixels, const auto& squared, std::size_t size) {
-    return judge_.seen_through.screen(pixels, squared, size);
-  };
-  PixelStream<decltype(take), PixelLookup::Reach::SquaredRange, decltype(screen)> stream(pixels_, take, screen);
+  PixelStream<decltype(take), PixelLookup::Reach::SquaredRange, SeenThrough> stream(pixels_, take, judge_.seen_through);
   Sink sink(judge_.sight.pose(), stream);
   for (std::size_t i = 0; i < batch.size(); ++i) {
     sink.add(batch[i].p[0], batch[i].p[1], batch[i].p[2], std::uint32_t(i));

@@ -148,10 +148,7 @@ void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judge& judg
   const auto take = [&](std::uint32_t tag, std::uint32_t pixel, double squared_range) {
     if (judge.seen_through(pixel, squared_range)) seen.push_back(tag);
   };
-  const auto screen = [&](const auto& pixels_of, const auto& squared, std::size_t size) {
-    return judge.seen_through.screen(pixels_of, squared, size);
-  };
-  PixelStream<decltype(take), PixelLookup::Reach::SquaredRange, decltype(screen)> stream(pixels, take, screen);
+  PixelStream<decltype(take), PixelLookup::Reach::SquaredRange, SeenThrough> stream(pixels, take, judge.seen_through);
   Sink sink(judge.sight.pose(), stream);
   stream_points(visits, sink);
   stats.cleared += seen.size();

@@ -24,9 +24,9 @@ struct EveryPoint {};
 /// Calls take(tag, pixel, reach) once for every point pushed — its pixel as PixelLookup::pixel_of
 /// gives it (or kOutside) and its range |v| (kReach Range) or the square of it (SquaredRange) —
 /// not in the order pushed; flush() hands back the last ones. With a screen, only for the points
-/// it does not rule out: screen(pixels, reaches, size) gives, of a group's lanes [0, size) from
-/// tier 1, as bits (lane i on bit i), those left kUndecided and those whose pixel and reach the
-/// caller may want.
+/// it does not rule out: screen.screen(pixels, reaches, size) gives, of a group's lanes [0, size)
+/// from tier 1, as bits (lane i on bit i), those left kUndecided and those whose pixel and reach
+/// the caller may want.
 template <class Take, PixelLookup::Reach kReach = PixelLookup::Reach::Range, class Screen = EveryPoint>
 class PixelStream {
  public:
@@ -41,7 +41,7 @@ class PixelStream {
     if constexpr (std::is_same_v<Screen, EveryPoint>) {
       for (std::size_t i = 0; i < points.size; ++i) pass_on(points, tags, i);
     } else {
-      for (std::uint32_t lanes = screen_(pixels_, reaches_, points.size); lanes != 0; lanes &= lanes - 1) {
+      for (std::uint32_t lanes = screen_.screen(pixels_, reaches_, points.size); lanes != 0; lanes &= lanes - 1) {
         pass_on(points, tags, std::size_t(std::countr_zero(lanes)));
       }
     }

@@ -85,7 +85,7 @@ class SeenThrough {
     const double nearest = image_.nearest_around(pixel);
     return nearest != RangeImage::kNoReturn && lies_beyond(nearest, squared_range, margin_);
   }
-  /// A PixelStream's screen: of a group's lanes [0, `size`) from tier 1 (`pixels`, squared ranges
+  /// As a PixelStream's screen: of a group's lanes [0, `size`) from tier 1 (`pixels`, squared ranges
   /// `squared`), as bits (lane i on bit i), those tier 1 left undecided and those this verdict may
   /// call seen through; it calls no other lane seen through. In vector code (scan_judge.cpp).
   [[nodiscard]] std::uint32_t screen(const std::array<std::uint32_t, PixelLookup::kGroup>& pixels,

@@ -60,7 +60,8 @@ std::vector<Eigen::Vector3d> on_walls(const SensorModel& sensor, std::mt19937& r
 }
 
 /// Streamed (tier 1 in groups, the points it leaves in groups of their own; handing back ranges and
-/// squared ranges), each point's pixel and reach as pixel_of's one at a time, every point once.
+/// squared ranges), each point's pixel and reach as pixel_of's one at a time, every point once;
+/// with a screen, only the points it does not rule out.
 void expect_streamed_as_one_at_a_time(const PixelLookup& lookup, const std::vector<Eigen::Vector3d>& points) {
   const auto stream_all = [&](auto& stream) {
     PixelLookup::Group group;
@@ -90,10 +91,45 @@ void expect_streamed_as_one_at_a_time(const PixelLookup& lookup, const std::vect
     ++squared_taken;
   };
   PixelStream<decltype(take_squared), PixelLookup::Reach::SquaredRange> squared_stream(lookup, take_squared);
+  // screened: only the points tier 1 leaves undecided or gives an even pixel
+  struct EvenPixels {
+    [[nodiscard]] std::uint32_t screen(const std::array<std::uint32_t, PixelLookup::kGroup>& pixels,
+                                       const std::array<double, PixelLookup::kGroup>&, std::size_t size) const {
+      std::uint32_t lanes = 0;
+      for (std::size_t i = 0; i < size; ++i) {
+        if (pixels[i] == PixelLookup::kUndecided || pixels[i] % 2 == 0) lanes |= 1u << i;
+      }
+      return lanes;
+    }
+  };
+  std::vector<std::uint32_t> screened_pixels(points.size(), PixelLookup::kUndecided);
+  std::vector<int> screened_takes(points.size(), 0);
+  const auto take_screened = [&](std::uint32_t tag, std::uint32_t pixel, double) {
+    screened_pixels.at(tag) = pixel;
+    ++screened_takes.at(tag);
+  };
+  PixelStream<decltype(take_screened), PixelLookup::Reach::SquaredRange, EvenPixels> screened_stream(lookup, take_screened);
   stream_all(stream);
   stream_all(squared_stream);
+  stream_all(screened_stream);
   EXPECT_EQ(taken, points.size());
   EXPECT_EQ(squared_taken, points.size());
+  std::size_t screened_out = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {  // tier 1's own verdict, a point at a time
+    PixelLookup::Group one;
+    one.size = 1;
+    one.x[0] = points[i].x(), one.y[0] = points[i].y(), one.z[0] = points[i].z();
+    std::array<std::uint32_t, PixelLookup::kGroup> first{};
+    std::array<double, PixelLookup::kGroup> reaches{};
+    lookup.first_tier_of(one, first, reaches, PixelLookup::Reach::SquaredRange);
+    const bool wanted = first[0] == PixelLookup::kUndecided || first[0] % 2 == 0;
+    ASSERT_EQ(screened_takes[i], wanted ? 1 : 0) << points[i].transpose();
+    if (wanted) {
+      ASSERT_EQ(screened_pixels[i], lookup.exact_pixel_of(points[i])) << points[i].transpose();
+    }
+    screened_out += wanted ? 0 : 1;
+  }
+  EXPECT_GT(screened_out, 0u);
   for (std::size_t i = 0; i < points.size(); ++i) {
     double range = 0.0;
     const std::uint32_t exact = lookup.exact_pixel_of(points[i], range);
