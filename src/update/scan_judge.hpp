@@ -122,14 +122,10 @@ template <class Stream>
 class Sink {
  public:
   Sink(const SensorPose& pose, Stream& stream) : pose_(pose), stream_(stream) {}
-  void add(float x, float y, float z, std::uint32_t tag) {
-    const std::size_t k = stored_.size++;
-    stored_.x[k] = x, stored_.y[k] = y, stored_.z[k] = z;
-    tags_[k] = tag;
-    if (stored_.size == PixelLookup::kGroup) send();
-  }
-  /// add(x[i], y[i], z[i], first_tag + i) for i in [0, n): a leaf's columns, a group's room at a
-  /// time (no test per point of whether the group is full).
+  /// One point (the arrivals' batches, which hold whole points, not columns).
+  void add(float x, float y, float z, std::uint32_t tag) { add_columns(&x, &y, &z, 1, tag); }
+  /// Points (x[i], y[i], z[i]) tagged first_tag + i for i in [0, n): a leaf's columns, a group's
+  /// room at a time (no test per point of whether the group is full).
   void add_columns(const float* x, const float* y, const float* z, std::uint32_t n, std::uint32_t first_tag) {
     while (n > 0) {
       const std::size_t k = stored_.size;
