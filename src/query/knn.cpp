@@ -213,13 +213,16 @@ class KnnSearch {
     // double's bits order as integers), its octant in the lowest three bits. The word, read as a
     // double, is a lower bound of the gap, so it prunes soundly. (Sorting gaps and octants side by
     // side by swaps, the compiler loaded pairs of gaps just stored one by one: a stall a child.)
-    std::uint64_t order[8];  // of the children present, then sorted: a plain array, not zeroed
+    // Only the children whose cells lie nearer than the k-th distance are ordered: once it is known
+    // (every ancestor's visit), that is one or two of them.
+    std::uint64_t order[8];  // of the children kept, then sorted: a plain array, not zeroed
     int m = 0;
     for (int o = 0; o < 8; ++o) {
       const std::uint32_t ch = t_.nodes().child(id, o);
-      if (ch == detail::kNone) continue;
-      t_.nodes().prefetch(ch);  // read below unless its cell is pruned: the misses overlap
+      if (ch == detail::kNone || ch == searched_) continue;  // searched_: before its ancestors
       const double g = gap[0][std::size_t(o & 1)] + gap[1][std::size_t(o >> 1 & 1)] + gap[2][std::size_t(o >> 2)];
+      if (g >= worst()) continue;
+      t_.nodes().prefetch(ch);  // read below unless pruned by then: the misses overlap
       order[m++] = (std::bit_cast<std::uint64_t>(g) & ~std::uint64_t{7}) | std::uint64_t(o);
     }
     for (int i = 1; i < m; ++i) {  // insertion sort: at most eight children (equal gaps in octant order)
@@ -232,7 +235,6 @@ class KnnSearch {
       if (std::bit_cast<double>(order[i] & ~std::uint64_t{7}) >= worst()) break;
       const int o = int(order[i] & 7);
       const std::uint32_t ch = t_.nodes().child(id, o);
-      if (ch == searched_) continue;  // searched before its ancestors
       const detail::Node& child = t_.nodes()[ch];
       // then the child's tight bounds, once it is read
       if (child.count > 0 && child.bounds.sq_dist(q_) < worst()) visit(ch, lattice.child(cell, o));
