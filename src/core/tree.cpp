@@ -258,7 +258,7 @@ void trim(std::vector<T>& buffer, std::size_t used, std::size_t most_bytes) {
   constexpr std::size_t kKeep = 1 << 12;
   if (buffer.capacity() <= kKeep || buffer.capacity() * sizeof(T) > most_bytes) {
     std::vector<T>().swap(buffer);
-  } else if (buffer.capacity() > 3 * used) {
+  } else if (buffer.capacity() > 2 * used) {
     std::vector<T>().swap(buffer);
     buffer.reserve(used);
   }
