@@ -293,7 +293,7 @@ class Tree {
   /// now (a first frame that took a whole map in), so they keep what steady frames use; a buffer
   /// of a few thousand points, or more than a kBufferShare of the point pools' bytes (a capped
   /// map's), is given back whole after each update. (A sixteenth, and thrice, kept 1.7 B a held
-  /// point more on kitti_mini_08 at the cap with attributes, for no update time measured.)
+  /// point more on kitti_mini_08 at the cap with attributes; the update measured level.)
   void trim_buffers(std::size_t used);
   static constexpr std::size_t kBufferShare = 32;
   /// Bytes held by the working buffers.

@@ -209,12 +209,13 @@ class KnnSearch {
       const double below = std::max({lo - q_[a], 0.0, q_[a] - mid}), above = std::max({mid - q_[a], 0.0, q_[a] - hi});
       gap[std::size_t(a)] = {below * below, above * above};
     }
-    // Per child present: its cell's squared gap as a word whose order is the gap's (a non-negative
-    // double's bits order as integers), its octant in the lowest three bits. The word, read as a
-    // double, is a lower bound of the gap, so it prunes soundly. (Sorting gaps and octants side by
-    // side by swaps, the compiler loaded pairs of gaps just stored one by one: a stall a child.)
     // Only the children whose cells lie nearer than the k-th distance are ordered: once it is known
-    // (every ancestor's visit), that is one or two of them.
+    // (at every ancestor of the first leaf) that is one or two of eight, and sorting and prefetching
+    // them all was most of a visit. Per child kept: its cell's squared gap as a word whose order is
+    // the gap's (a non-negative double's bits order as integers), its octant in the lowest three
+    // bits. The word, read as a double, is a lower bound of the gap, so it prunes soundly. (Sorting
+    // gaps and octants side by side by swaps, the compiler loaded pairs of gaps just stored one by
+    // one: a stall a child.)
     std::uint64_t order[8];  // of the children kept, then sorted: a plain array, not zeroed
     int m = 0;
     for (int o = 0; o < 8; ++o) {
