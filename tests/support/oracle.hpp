@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <utility>
 #include <vector>
 
 namespace eco::test {
@@ -88,6 +89,7 @@ class Oracle {
 
     const Eigen::Matrix3d r = pose.linear();
     const Eigen::Vector3d t = pose.translation();
+    std::map<Cell, std::uint32_t> density = density_counts();
     for (std::size_t i = 0; i < scan.size(); ++i) {
       const Eigen::Vector3f& s = scan[i];
       if (!s.allFinite()) continue;
@@ -101,7 +103,11 @@ class Oracle {
       }
       const float time = timed ? float(attributes.times[i] - time_origin_) : 0.0f;
       if (double(time) < time_cutoff) continue;  // older than the limit already
-      if (cfg_.density_cap.enabled() && density_count(f) >= cfg_.density_cap.max_points) continue;
+      if (cfg_.density_cap.enabled()) {  // the first points to reach a full cell are the ones kept
+        std::uint32_t& held_there = density[cell_of(f)];
+        if (held_there >= cfg_.density_cap.max_points) continue;
+        ++held_there;
+      }
       held_.push_back({f, age > 0 ? frame_ : 0, cfg_.attributes.ids ? attributes.ids[i] : 0u,
                        cfg_.attributes.intensity ? attributes.intensities[i] : 0.0f, time, frame_});
     }
@@ -203,13 +209,10 @@ class Oracle {
     std::uint32_t arrived;  // the update that brought it (clearing.arrivals)
   };
 
-  /// A scan as clearing reads it: its returns' pixels and ranges, and the pose it was taken at.
-  struct Ray {
-    int row, column;
-    double range;
-  };
+  /// A scan as clearing reads it: its returns' ranges by pixel (row, column), and the pose it was
+  /// taken at.
   struct SeenScan {
-    std::vector<Ray> rays;
+    std::map<std::pair<int, int>, std::vector<double>> ranges_at;
     Eigen::Isometry3d pose;
     std::uint32_t frame;
   };
@@ -219,7 +222,7 @@ class Oracle {
       if (!s.allFinite()) continue;
       double range = 0.0;
       int row = 0, column = 0;
-      if (pixel(s.cast<double>(), row, column, range)) seen.rays.push_back({row, column, range});
+      if (pixel(s.cast<double>(), row, column, range)) seen.ranges_at[{row, column}].push_back(range);
     }
     return seen;
   }
@@ -234,13 +237,18 @@ class Oracle {
     if (!pixel(v, row, column, range)) return false;
     const int columns = int(std::ceil(360.0 / cfg_.sensor.horizontal_resolution));
     const int rows = cfg_.sensor.rows();
+    // the columns around it, wrapping around the circle (fewer than three in a narrow image)
+    std::vector<int> around{(column + columns - 1) % columns, column, (column + 1) % columns};
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
     double nearest = std::numeric_limits<double>::infinity();
     std::array<bool, 3> row_returned{row == 0, false, row + 1 == rows};  // rows past the edge need none
-    for (const Ray& r : scan.rays) {
-      const int apart = std::abs(r.column - column);
-      if (std::abs(r.row - row) <= 1 && std::min(apart, columns - apart) <= 1) {
-        nearest = std::min(nearest, r.range);
-        row_returned[std::size_t(r.row - row + 1)] = true;
+    for (int up = -1; up <= 1; ++up) {
+      for (const int c : around) {
+        const auto rays = scan.ranges_at.find({row + up, c});
+        if (rays == scan.ranges_at.end()) continue;
+        for (const double r : rays->second) nearest = std::min(nearest, r);
+        row_returned[std::size_t(up + 1)] = true;
       }
     }
     const bool every_row = row_returned[0] && row_returned[1] && row_returned[2];
@@ -305,15 +313,18 @@ class Oracle {
     while (double(f) >= double(i + 1) * res - origin_[a]) ++i;
     return i;
   }
-  [[nodiscard]] std::uint32_t density_count(const std::array<float, 3>& f) const {
+  /// A density cell: the grid indices of the cap's cell.
+  using Cell = std::array<std::int64_t, 3>;
+  [[nodiscard]] Cell cell_of(const std::array<float, 3>& f) const {
     const double r = cfg_.density_cap.cell_size;
-    std::uint32_t n = 0;
-    for (const Held& h : held_) {
-      bool same = true;
-      for (int a = 0; a < 3; ++a) same = same && index(a, h.p[a], r) == index(a, f[a], r);
-      n += same ? 1 : 0;
-    }
-    return n;
+    return {index(0, f[0], r), index(1, f[1], r), index(2, f[2], r)};
+  }
+  /// The held points of every density cell, counted one by one (empty while the cap is off).
+  [[nodiscard]] std::map<Cell, std::uint32_t> density_counts() const {
+    std::map<Cell, std::uint32_t> counts;
+    if (!cfg_.density_cap.enabled()) return counts;
+    for (const Held& h : held_) ++counts[cell_of(h.p)];
+    return counts;
   }
 
   Config cfg_;
