@@ -47,7 +47,7 @@ test-sanitize: deps
 
 test-fuzz: deps
 	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DECO_FUZZ=ON \
-	  -DECO_BUILD_TESTS=OFF -DECO_BUILD_EXAMPLES=OFF -DECO_FUZZ_SECONDS=$(FUZZ_SECONDS)
+	  -DECO_BUILD_TESTS=OFF -DECO_BUILD_TOOLS=OFF -DECO_BUILD_EXAMPLES=OFF -DECO_FUZZ_SECONDS=$(FUZZ_SECONDS)
 	cmake --build $(FUZZ_BUILD) -j $(JOBS)
 	ctest --test-dir $(FUZZ_BUILD) --output-on-failure -j $(JOBS)
 
