@@ -33,22 +33,23 @@ demo: build
 
 ## test: every test (C++ and, through pytest, Python), in a release build; the C++ tests again
 ## under AddressSanitizer + UBSan; then each parser's libFuzzer target for a fixed time
-## (FUZZ_SECONDS) under the same sanitizers. The sanitized builds keep line tables only (-g1):
-## all a sanitizer's report needs, and about 30 % less time to compile than full debug information.
+## (FUZZ_SECONDS) under the same sanitizers.
 FUZZ_SECONDS ?= 10
+## The sanitized builds keep line tables only: all a sanitizer's report needs, and about 30 % less
+## time to compile than full debug information.
+SANITIZED_DEBUG := -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1
 test: test-release test-sanitize test-fuzz
 
 test-release: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 test-sanitize: deps
-	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DECO_SANITIZE=ON \
-	  -DECO_BUILD_EXAMPLES=OFF
+	cmake -S . -B $(ASAN_BUILD) $(SANITIZED_DEBUG) -DECO_SANITIZE=ON -DECO_BUILD_EXAMPLES=OFF
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
 test-fuzz: deps
-	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DECO_FUZZ=ON \
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ $(SANITIZED_DEBUG) -DECO_FUZZ=ON \
 	  -DECO_BUILD_TESTS=OFF -DECO_BUILD_TOOLS=OFF -DECO_BUILD_EXAMPLES=OFF -DECO_FUZZ_SECONDS=$(FUZZ_SECONDS)
 	cmake --build $(FUZZ_BUILD) -j $(JOBS)
 	ctest --test-dir $(FUZZ_BUILD) --output-on-failure -j $(JOBS)

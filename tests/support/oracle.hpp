@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -238,9 +239,7 @@ class Oracle {
     const int columns = int(std::ceil(360.0 / cfg_.sensor.horizontal_resolution));
     const int rows = cfg_.sensor.rows();
     // the columns around it, wrapping around the circle (fewer than three in a narrow image)
-    std::vector<int> around{(column + columns - 1) % columns, column, (column + 1) % columns};
-    std::sort(around.begin(), around.end());
-    around.erase(std::unique(around.begin(), around.end()), around.end());
+    const std::set<int> around{(column + columns - 1) % columns, column, (column + 1) % columns};
     double nearest = std::numeric_limits<double>::infinity();
     std::array<bool, 3> row_returned{row == 0, false, row + 1 == rows};  // rows past the edge need none
     for (int up = -1; up <= 1; ++up) {
