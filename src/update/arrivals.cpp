@@ -23,9 +23,7 @@ void ArrivalCheck::operator()(const std::vector<Point>& batch) {
   };
   PixelStream<decltype(take), PixelLookup::Reach::SquaredRange, SeenThrough> stream(pixels_, take, judge_.seen_through);
   Sink sink(judge_.sight.pose(), stream);
-  for (std::size_t i = 0; i < batch.size(); ++i) {
-    sink.add(batch[i].p[0], batch[i].p[1], batch[i].p[2], std::uint32_t(i));
-  }
+  for (const Point& point : batch) sink.add(point.p[0], point.p[1], point.p[2]);  // tagged by index
   sink.flush();
 }
 

@@ -79,7 +79,7 @@ void stream_points(const std::vector<Visit>& visits, Sink& sink) {
     const float* x = leaf.x;
     const float* y = x + leaf.stride;
     const float* z = y + leaf.stride;
-    sink.add_columns(x, y, z, leaf.points, leaf.first);
+    sink.add_columns(x, y, z, leaf.points);  // numbered on from the last leaf's: leaf.first
   }
   sink.flush();
 }

@@ -23,7 +23,8 @@ struct EveryPoint {};
 
 /// Calls take(tag, pixel, reach) once for every point pushed — its pixel as PixelLookup::pixel_of
 /// gives it (or kOutside) and its range |v| (kReach Range) or the square of it (SquaredRange) —
-/// not in the order pushed; flush() hands back the last ones. With a screen, only for the points
+/// not in the order pushed; flush() hands back the last ones. A point's tag is its number in the
+/// order pushed, from 0 (every caller numbers its points so: a leaf's run on from the last). With a screen, only for the points
 /// it does not rule out: screen.screen(pixels, reaches, size) gives, of a group's lanes [0, size)
 /// from tier 1, as bits (lane i on bit i), those left kUndecided and those whose pixel and reach
 /// the caller may want.
@@ -35,31 +36,33 @@ class PixelStream {
   PixelStream(const PixelLookup& lookup, Take take, Screen screen = {})
       : lookup_(lookup), take_(std::move(take)), screen_(std::move(screen)) {}
 
-  /// A group of sensor-frame points, lane i tagged tags[i].
-  void push_group(const PixelLookup::Group& points, const std::array<std::uint32_t, kGroup>& tags) {
+  /// A group of sensor-frame points, the next points.size of them.
+  void push_group(const PixelLookup::Group& points) {
     lookup_.first_tier_of(points, pixels_, reaches_, kReach);
     if constexpr (std::is_same_v<Screen, EveryPoint>) {
-      for (std::size_t i = 0; i < points.size; ++i) pass_on(points, tags, i);
+      for (std::size_t i = 0; i < points.size; ++i) pass_on(points, i);
     } else {
       for (std::uint32_t lanes = screen_.screen(pixels_, reaches_, points.size); lanes != 0; lanes &= lanes - 1) {
-        pass_on(points, tags, std::size_t(std::countr_zero(lanes)));
+        pass_on(points, std::size_t(std::countr_zero(lanes)));
       }
     }
+    pushed_ += std::uint32_t(points.size);
   }
   /// Answers the points still waiting.
   void flush() { run_left(); }
 
  private:
   /// Lane i of the group pushed: taken, or left for tiers 2 and 3.
-  void pass_on(const PixelLookup::Group& points, const std::array<std::uint32_t, kGroup>& tags, std::size_t i) {
+  void pass_on(const PixelLookup::Group& points, std::size_t i) {
+    const std::uint32_t tag = pushed_ + std::uint32_t(i);
     if (pixels_[i] != PixelLookup::kUndecided) {
-      take_(tags[i], pixels_[i], reaches_[i]);
+      take_(tag, pixels_[i], reaches_[i]);
       return;
     }
     const std::size_t j = left_.size++;
     left_.x[j] = points.x[i], left_.y[j] = points.y[i], left_.z[j] = points.z[i];
     left_reaches_[j] = reaches_[i];
-    left_tags_[j] = tags[i];
+    left_tags_[j] = tag;
     if (left_.size == kGroup) run_left();
   }
   void run_left() {
@@ -77,6 +80,7 @@ class PixelStream {
   [[no_unique_address]] Screen screen_;
   std::array<std::uint32_t, kGroup> pixels_{};  // tier 1's answers for the group pushed
   std::array<double, kGroup> reaches_{};
+  std::uint32_t pushed_ = 0;  // points pushed before the group at hand
   PixelLookup::Group left_;  // the points tier 1 left, waiting for a group of their own
   std::array<std::uint32_t, kGroup> left_tags_{}, left_pixels_{};
   std::array<double, kGroup> left_reaches_{};

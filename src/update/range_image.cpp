@@ -30,14 +30,13 @@ RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<dou
     if (pixel != PixelLookup::kOutside) nearest[pixel] = std::min(nearest[pixel], range);
   });
   PixelLookup::Group group;
-  const std::array<std::uint32_t, PixelLookup::kGroup> tags{};  // the returns need none
   for (std::size_t begin = 0; begin < scan.count; begin += PixelLookup::kGroup) {
     group.size = std::min(PixelLookup::kGroup, scan.count - begin);
     for (std::size_t i = 0; i < group.size; ++i) {  // a return with a non-finite coordinate has no pixel
       const float* p = scan.data + (begin + i) * scan.stride;
       group.x[i] = p[0], group.y[i] = p[1], group.z[i] = p[2];
     }
-    stream.push_group(group, tags);
+    stream.push_group(group);
   }
   stream.flush();
   // The minimum over 3x3 neighbourhoods, separably and in place: three rows' minima along them

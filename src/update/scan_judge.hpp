@@ -116,28 +116,26 @@ struct Judge {
   }
 };
 
-/// A judge's end of a pixel stream: stored points, tagged, rotated into the sensor's frame a group
-/// at a time (in vector code) and handed to `stream` (a PixelStream).
+/// A judge's end of a pixel stream: stored points, rotated into the sensor's frame a group at a time
+/// (in vector code) and handed to `stream` (a PixelStream), which tags them in the order added.
 template <class Stream>
 class Sink {
  public:
   Sink(const SensorPose& pose, Stream& stream) : pose_(pose), stream_(stream) {}
   /// One point (the arrivals' batches, which hold whole points, not columns).
-  void add(float x, float y, float z, std::uint32_t tag) { add_columns(&x, &y, &z, 1, tag); }
-  /// Points (x[i], y[i], z[i]) tagged first_tag + i for i in [0, n): a leaf's columns, a group's
-  /// room at a time (no test per point of whether the group is full).
-  void add_columns(const float* x, const float* y, const float* z, std::uint32_t n, std::uint32_t first_tag) {
+  void add(float x, float y, float z) { add_columns(&x, &y, &z, 1); }
+  /// Points (x[i], y[i], z[i]) for i in [0, n): a leaf's columns, a group's room at a time (no test
+  /// per point of whether the group is full).
+  void add_columns(const float* x, const float* y, const float* z, std::uint32_t n) {
     while (n > 0) {
       const std::size_t k = stored_.size;
       const auto take = std::uint32_t(std::min<std::size_t>(n, PixelLookup::kGroup - k));
       for (std::uint32_t i = 0; i < take; ++i) {  // a plain loop: a call to memmove a column cost more
         stored_.x[k + i] = x[i], stored_.y[k + i] = y[i], stored_.z[k + i] = z[i];
-        tags_[k + i] = first_tag + i;
       }
       stored_.size += take;
       if (stored_.size == PixelLookup::kGroup) send();
       x += take, y += take, z += take;
-      first_tag += take;
       n -= take;
     }
   }
@@ -150,14 +148,13 @@ class Sink {
  private:
   void send() {
     to_sensor_frame(pose_, stored_, group_);
-    stream_.push_group(group_, tags_);
+    stream_.push_group(group_);
     stored_.size = 0;
   }
   const SensorPose& pose_;
   Stream& stream_;
   StoredGroup stored_;
   PixelLookup::Group group_;
-  std::array<std::uint32_t, PixelLookup::kGroup> tags_{};
 };
 
 }  // namespace eco::detail

@@ -65,14 +65,12 @@ std::vector<Eigen::Vector3d> on_walls(const SensorModel& sensor, std::mt19937& r
 void expect_streamed_as_one_at_a_time(const PixelLookup& lookup, const std::vector<Eigen::Vector3d>& points) {
   const auto stream_all = [&](auto& stream) {
     PixelLookup::Group group;
-    std::array<std::uint32_t, PixelLookup::kGroup> tags{};
     for (std::size_t begin = 0; begin < points.size(); begin += group.size) {
       group.size = std::min(points.size() - begin, 1 + begin % PixelLookup::kGroup);  // groups of every size
       for (std::size_t i = 0; i < group.size; ++i) {
         group.x[i] = points[begin + i].x(), group.y[i] = points[begin + i].y(), group.z[i] = points[begin + i].z();
-        tags[i] = std::uint32_t(begin + i);
       }
-      stream.push_group(group, tags);
+      stream.push_group(group);  // tags its points begin, begin + 1, ...
       if (begin % 1000 < PixelLookup::kGroup) stream.flush();  // waiting groups of every size too
     }
     stream.flush();
