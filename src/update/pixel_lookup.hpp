@@ -128,10 +128,12 @@ class PixelLookup {
   /// table's bins (clamped to them).
   [[gnu::always_inline]] static std::int32_t between(const Walls& walls, double bin, double value, std::uint32_t& clear) {
     const std::int32_t b = std::int32_t(std::min(double(walls.bins - 1), std::max(0.0, bin)));  // NaN: 0
-    std::int32_t i = std::int32_t(walls.start[b]);  // exact
-    i += std::int32_t(value >= walls.at[i + 1]);
-    clear = std::uint32_t(value - walls.at[i] >= kGuard) & std::uint32_t(walls.at[i + 1] - value > kGuard);
-    return i;
+    const std::int32_t i = std::int32_t(walls.start[b]);  // exact; at most the third wall from the end
+    const double below = walls.at[i], next = walls.at[i + 1], after = walls.at[i + 2];  // loaded together
+    const bool up = value >= next;
+    const double lower = up ? next : below, upper = up ? after : next;
+    clear = std::uint32_t(value - lower >= kGuard) & std::uint32_t(upper - value > kGuard);
+    return i + std::int32_t(up);
   }
   /// Tier 2 for the point (x, y, z) with |v| = range: its pixel, kOutside, or kUndecided (left to
   /// the formulas: straight up or down, the origin, NaN, or within kGuard of a wall). Without

@@ -1,6 +1,7 @@
 #include "update/range_image.hpp"
 
 #include "update/pixel_stream.hpp"
+#include "update/sensor_frame.hpp"
 
 #include <algorithm>
 #include <array>
@@ -31,11 +32,8 @@ RangeImage::RangeImage(const PixelLookup& pixels, ScanView scan, std::vector<dou
   });
   PixelLookup::Group group;
   for (std::size_t begin = 0; begin < scan.count; begin += PixelLookup::kGroup) {
-    group.size = std::min(PixelLookup::kGroup, scan.count - begin);
-    for (std::size_t i = 0; i < group.size; ++i) {  // a return with a non-finite coordinate has no pixel
-      const float* p = scan.data + (begin + i) * scan.stride;
-      group.x[i] = p[0], group.y[i] = p[1], group.z[i] = p[2];
-    }
+    // a return with a non-finite coordinate has no pixel
+    load_returns(scan.data + begin * scan.stride, scan.stride, std::min(PixelLookup::kGroup, scan.count - begin), group);
     stream.push_group(group);
   }
   stream.flush();

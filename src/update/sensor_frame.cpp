@@ -12,6 +12,24 @@ SensorPose::SensorPose(const Eigen::Matrix3d& sensor_R_world, const Eigen::Vecto
   }
 }
 
+namespace {
+
+/// A full group of packed points, for the compiler to load three at a time with shuffles.
+ECO_WIDE_VECTOR_CLONES
+void load_packed_group(const float* data, PixelLookup::Group& out) {
+  for (std::size_t i = 0; i < PixelLookup::kGroup; ++i) {
+    out.x[i] = data[3 * i], out.y[i] = data[3 * i + 1], out.z[i] = data[3 * i + 2];
+  }
+}
+
+}  // namespace
+
+void load_returns(const float* data, std::size_t stride, std::size_t n, PixelLookup::Group& out) {
+  out.size = n;
+  if (stride == 3 && n == PixelLookup::kGroup) return load_packed_group(data, out);
+  for (std::size_t i = 0; i < n; ++i, data += stride) out.x[i] = data[0], out.y[i] = data[1], out.z[i] = data[2];
+}
+
 ECO_WIDE_VECTOR_CLONES
 void to_sensor_frame(const SensorPose& pose, const StoredGroup& in, PixelLookup::Group& out) {
   const auto r = pose.rotation;  // copies: the output's doubles could alias the pose's, for all GCC knows

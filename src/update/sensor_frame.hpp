@@ -33,6 +33,11 @@ struct StoredGroup {
   alignas(16) std::array<float, PixelLookup::kGroup> x{}, y{}, z{};
 };
 
+/// The next `n` <= PixelLookup::kGroup returns of a scan, from `data` (`stride` floats apart), into
+/// `out` (out.size = n): they are in the sensor's frame already. A full group of packed points
+/// (stride 3, the common layout) in vector code.
+void load_returns(const float* data, std::size_t stride, std::size_t n, PixelLookup::Group& out);
+
 /// `out` = pose.apply() of every lane of `in` (all kGroup of them; out.size = in.size), summed in
 /// the order Eigen sums a 3×3 product (the first two rows left to right, the third right first;
 /// tests/core/sensor_frame_test.cpp).

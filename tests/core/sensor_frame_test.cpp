@@ -1,13 +1,17 @@
 // to_sensor_frame, whose lanes rotate held points in vector code (src/update/sensor_frame.cpp),
 // against Eigen's product one point at a time: the same doubles to the bit, for random rotations,
-// offsets near and far from the precision origin, and every group size.
+// offsets near and far from the precision origin, and every group size; and load_returns, which
+// loads a scan's returns (packed, in vector code, or strided), against the floats themselves.
 
 #include "update/sensor_frame.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
+#include <vector>
 
 namespace eco::detail {
 namespace {
@@ -39,6 +43,32 @@ TEST(SensorFrame, GroupsRotateAsEigenDoesToTheBit) {
     }
   }
   EXPECT_EQ(compared, 400u * PixelLookup::kGroup * (PixelLookup::kGroup + 1) / 2);  // every group size
+}
+
+TEST(SensorFrame, ReturnsLoadAsTheirFloatsForEveryStrideAndGroupSize) {
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<float> coordinate(-120.0f, 120.0f);
+  for (const std::size_t stride : {3u, 4u, 7u}) {
+    std::vector<float> scan(stride * (PixelLookup::kGroup + 5));
+    for (float& f : scan) f = coordinate(rng);
+    scan[stride * 2] = std::numeric_limits<float>::quiet_NaN();  // non-finite coordinates pass as they are
+    scan[stride * 3 + 1] = -std::numeric_limits<float>::infinity();
+    for (const std::size_t begin : {0u, 1u, 5u}) {
+      for (std::size_t n = 1; n <= PixelLookup::kGroup; ++n) {
+        PixelLookup::Group out;
+        out.x.fill(-1.0), out.y.fill(-1.0), out.z.fill(-1.0);
+        load_returns(scan.data() + begin * stride, stride, n, out);
+        ASSERT_EQ(out.size, n);
+        for (std::size_t i = 0; i < n; ++i) {
+          const float* p = scan.data() + (begin + i) * stride;
+          const auto same = [](double loaded, float f) { return std::isnan(f) ? std::isnan(loaded) : loaded == double(f); };
+          ASSERT_TRUE(same(out.x[i], p[0]) && same(out.y[i], p[1]) && same(out.z[i], p[2]))
+              << "stride " << stride << " begin " << begin << " n " << n << " lane " << i;
+        }
+        for (std::size_t i = n; i < PixelLookup::kGroup; ++i) ASSERT_EQ(out.x[i], -1.0) << "lane " << i << " past n = " << n;
+      }
+    }
+  }
 }
 
 }  // namespace
