@@ -2,10 +2,10 @@
 
 #include <eco/io/error.hpp>
 
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 
 namespace eco::io::detail {
 
@@ -16,7 +16,13 @@ std::string read_file(const fs::path& path) {
   if (fs::is_directory(path, ec)) throw Error(path.string(), "", "is a directory, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path.string(), "", std::string("cannot open: ") + std::strerror(errno));
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // In blocks: a character at a time (istreambuf_iterator) took a fifth of a benchmark's run. The
+  // size is a hint only (a pipe has none); reading stops at the end, whatever it said.
+  std::string bytes;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec) bytes.reserve(std::size_t(size));
+  std::array<char, 1 << 16> block;
+  while (in.read(block.data(), block.size()) || in.gcount() > 0) bytes.append(block.data(), std::size_t(in.gcount()));
   if (in.bad()) throw Error(path.string(), "", "read failed");
   return bytes;
 }
