@@ -24,10 +24,10 @@ struct EveryPoint {};
 /// Calls take(tag, pixel, reach) once for every point pushed — its pixel as PixelLookup::pixel_of
 /// gives it (or kOutside) and its range |v| (kReach Range) or the square of it (SquaredRange) —
 /// not in the order pushed; flush() hands back the last ones. A point's tag is its number in the
-/// order pushed, from 0 (every caller numbers its points so: a leaf's run on from the last). With a screen, only for the points
-/// it does not rule out: screen.screen(pixels, reaches, size) gives, of a group's lanes [0, size)
-/// from tier 1, as bits (lane i on bit i), those left kUndecided and those whose pixel and reach
-/// the caller may want.
+/// order pushed, from 0: every caller numbers its points so (a leaf's run on from the last leaf's),
+/// so no tag is copied per point. With a screen, only for the points it does not rule out:
+/// screen.screen(pixels, reaches, size) gives, of a group's lanes [0, size) from tier 1, as bits
+/// (lane i on bit i), those left kUndecided and those whose pixel and reach the caller may want.
 template <class Take, PixelLookup::Reach kReach = PixelLookup::Reach::Range, class Screen = EveryPoint>
 class PixelStream {
  public:

@@ -1,6 +1,7 @@
 #pragma once
-// Held points into the sensor's frame, a group at a time in vector code (core/vector_clones.hpp):
-// free-space clearing projects every held point in view, every frame.
+// Points in the sensor's frame, a group at a time in vector code (core/vector_clones.hpp), for
+// free-space clearing, which looks up the pixel of every return and of every held point in view,
+// every frame: held points rotated into it, a scan's returns (already in it) loaded.
 
 #include "update/pixel_lookup.hpp"
 
