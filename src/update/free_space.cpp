@@ -62,17 +62,19 @@ std::uint32_t look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, c
 }
 
 /// Pass 1, the points: streams every visited leaf's points into `sink`, tagged with their
-/// numbers, a group at a time across leaves; the leaves' columns are asked for a few
-/// leaves ahead.
+/// numbers, a group at a time across leaves; every line of the leaves' columns is asked for a few
+/// leaves ahead (between updates the caller's own work evicts them: in `eco bench`, asking for the
+/// first and last line of each column only left ~0.2 ms a frame of misses on the copy).
 template <class Sink>
 void stream_points(const std::vector<Visit>& visits, Sink& sink) {
   constexpr std::size_t kAhead = 8;
+  constexpr std::uint32_t kFloatsPerLine = 64 / sizeof(float);
   for (std::size_t v = 0; v < visits.size(); ++v) {
     if (v + kAhead < visits.size()) {
       const Visit& ahead = visits[v + kAhead];
       for (std::uint32_t column = 0; column < 3 * ahead.stride; column += ahead.stride) {
-        __builtin_prefetch(ahead.x + column);
-        __builtin_prefetch(ahead.x + column + ahead.points - 1);
+        for (std::uint32_t at = 0; at < ahead.points; at += kFloatsPerLine) __builtin_prefetch(ahead.x + column + at);
+        __builtin_prefetch(ahead.x + column + ahead.points - 1);  // the last line, where the first is not aligned
       }
     }
     const Visit& leaf = visits[v];
