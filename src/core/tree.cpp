@@ -252,11 +252,14 @@ namespace {
 
 template <class T>
 void trim(std::vector<T>& buffer, std::size_t used, std::size_t most_bytes) {
-  // Below this (~110 KB of points) a buffer comes from the heap's free lists, not fresh pages: not
-  // worth keeping for a map that takes in few points a frame (a capped one), so it is given back,
-  // as is one larger than `most_bytes`; the others are kept at what the frames use.
-  constexpr std::size_t kKeep = 1 << 12;
-  if (buffer.capacity() <= kKeep || buffer.capacity() * sizeof(T) > most_bytes) {
+  // Below this a buffer comes from the heap's free lists, not fresh pages: not worth keeping for a
+  // map that takes in few points a frame (a capped one), so it is given back, as is one larger
+  // than `most_bytes`; the others are kept at what the frames use. In bytes, whatever the element:
+  // counted in elements, the index arrays were kept from 16 KB (kitti_mini_08 at the cap: up to
+  // 1.7 B a held point).
+  constexpr std::size_t kKeepBytes = std::size_t{112} << 10;
+  const std::size_t bytes = buffer.capacity() * sizeof(T);
+  if (bytes <= kKeepBytes || bytes > most_bytes) {
     std::vector<T>().swap(buffer);
   } else if (buffer.capacity() > 2 * used) {
     std::vector<T>().swap(buffer);

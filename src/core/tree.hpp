@@ -55,6 +55,9 @@ class Tree {
   [[nodiscard]] std::size_t size() const { return root_ == kNone ? 0 : nodes_[root_].count; }
   /// Bytes held: nodes, leaf blocks, start table, working buffers, density counts.
   [[nodiscard]] std::size_t bytes() const;
+  /// Of those, the working buffers' (insertion's, and free-space clearing's images and tables),
+  /// kept between updates so that no frame pays for fresh pages.
+  [[nodiscard]] std::size_t buffer_bytes() const;
 
   /// The current frame's motion (set_motion); none before the first.
   [[nodiscard]] const std::optional<Motion>& motion() const { return motion_; }
@@ -291,13 +294,12 @@ class Tree {
   [[nodiscard]] Cell start_cell(std::uint32_t slot) const;
   /// Gives back the working buffers' memory when it is over twice the `used` points a frame needs
   /// now (a first frame that took a whole map in), so they keep what steady frames use; a buffer
-  /// of a few thousand points, or more than a kBufferShare of the point pools' bytes (a capped
-  /// map's), is given back whole after each update. (A sixteenth, and thrice, kept 1.7 B a held
-  /// point more on kitti_mini_08 at the cap with attributes; the update measured level.)
+  /// of up to ~110 KB (every index array: a batch is at most kInsertChunk points), or more than a
+  /// kBufferShare of the point pools' bytes (a capped map's), is given back whole after each
+  /// update. (A sixteenth, and thrice, kept 1.7 B a held point more on kitti_mini_08 at the cap
+  /// with attributes; the update measured level.)
   void trim_buffers(std::size_t used);
   static constexpr std::size_t kBufferShare = 32;
-  /// Bytes held by the working buffers.
-  [[nodiscard]] std::size_t buffer_bytes() const;
 
   Config cfg_;
   NodeStore nodes_;
