@@ -117,7 +117,7 @@ class Tree {
   /// into free ones below, kCompactionBudget bytes an update at most, and the pages behind them
   /// are released. No point changes, only where it lies.
   void give_back_memory(std::size_t floor = kMemoryFloor);
-  static constexpr std::size_t kFreeShare = 32;                       // a thirty-second
+  static constexpr std::size_t kFreeShare = 64;                       // a sixty-fourth
   static constexpr std::size_t kMemoryFloor = std::size_t{1} << 14;   // below, not worth it (four pages)
   static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
 
