@@ -254,9 +254,8 @@ template <class T>
 void trim(std::vector<T>& buffer, std::size_t used, std::size_t most_bytes) {
   // Below this a buffer comes from the heap's free lists, not fresh pages: not worth keeping for a
   // map that takes in few points a frame (a capped one), so it is given back, as is one larger
-  // than `most_bytes`; the others are kept at what the frames use. In bytes, whatever the element:
-  // counted in elements, the index arrays were kept from 16 KB (kitti_mini_08 at the cap: up to
-  // 1.7 B a held point).
+  // than `most_bytes`; the others are kept at what the frames use. In bytes, whatever the element
+  // (the index arrays' entries are 4 B, a point's 12 or 28).
   constexpr std::size_t kKeepBytes = std::size_t{112} << 10;
   const std::size_t bytes = buffer.capacity() * sizeof(T);
   if (bytes <= kKeepBytes || bytes > most_bytes) {

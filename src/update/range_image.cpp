@@ -22,7 +22,8 @@ namespace {
 /// Each of a row's pixels (`n`, into `out`) from its column's minima along three rows: the nearest
 /// of them, or kNoReturn where one of them got none. At the image's edge the missing row is the
 /// middle one again (`above` or `below` == `here`), which changes neither.
-[[gnu::always_inline]] inline void minimum_across(const double* above, const double* here, const double* below, std::size_t n, double* out) {
+[[gnu::always_inline]] inline void minimum_across(const double* above, const double* here, const double* below,
+                                                  std::size_t n, double* out) {
   for (std::size_t c = 0; c < n; ++c) {
     const double m = std::min(above[c], std::min(here[c], below[c]));
     const double farthest = std::max(above[c], std::max(here[c], below[c]));
