@@ -1,7 +1,7 @@
 // The update's working buffers between updates (Tree::trim_buffers): a map that takes in a few
-// thousand points a frame keeps none that grow with them, whatever their element, since buffers that small
-// come from the heap's free lists; one that takes in many keeps its point batches, so that no
-// frame pays for fresh pages.
+// thousand points a frame keeps none that grow with them, whatever their element, since buffers
+// that small come from the heap's free lists; one that takes in many keeps its point batches, so
+// that no frame pays for fresh pages.
 
 #include "core/tree.hpp"
 #include "update/stages.hpp"
