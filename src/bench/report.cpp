@@ -83,10 +83,12 @@ json run_json(const BenchRun& run, const std::string& command_line) {
 
 std::string csv(const MethodRun& m) {
   std::ostringstream s;
-  s << "frame,input_points,update_ms,voxel_ms,knn_ms,points,nodes,mean_depth,max_depth,bytes,chamfer_m\n";
+  s << "frame,input_points,update_ms,update_faults,caller_ms,caller_faults,voxel_ms,knn_ms,points,nodes,mean_depth,"
+       "max_depth,bytes,chamfer_m\n";
   s << std::setprecision(6);
   for (const FrameRecord& r : m.frames) {
-    s << r.frame << ',' << r.input_points << ',' << r.update_ms << ',' << r.voxel_ms << ',' << r.knn_ms << ','
+    s << r.frame << ',' << r.input_points << ',' << r.update_ms << ',' << r.update_faults << ',' << r.caller_ms << ','
+      << r.caller_faults << ',' << r.voxel_ms << ',' << r.knn_ms << ','
       << r.points << ',' << r.nodes << ',' << r.mean_depth << ',' << r.max_depth << ',' << r.bytes << ','
       << (std::isnan(r.chamfer_m) ? std::string() : fixed(r.chamfer_m, 6)) << '\n';
   }
@@ -100,6 +102,9 @@ json summary_json(const BenchRun& run, const std::vector<MethodSummary>& summari
                        {"first_update_ms", s.first_update_ms},
                        {"update_ms", s.update_ms},
                        {"update_ms_p99", s.update_ms_p99},
+                       {"update_faults", s.update_faults},
+                       {"caller_ms", s.caller_ms},
+                       {"caller_faults", s.caller_faults},
                        {"voxel_ms", s.voxel_ms},
                        {"knn_ms", s.knn_ms},
                        {"mean_depth", s.mean_depth},
@@ -163,6 +168,13 @@ std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>
     << ratio(kd, &MethodSummary::update_ms, eco) << ", eco voxel map / pcl_octree "
     << ratio(eco, &MethodSummary::voxel_ms, pcl) << ", eco KNN / nanoflann " << ratio(eco, &MethodSummary::knn_ms, kd)
     << ", eco update p99 / mean " << (eco ? fixed(eco->update_ms_p99 / eco->update_ms, 2) + "×" : "–") << ".\n";
+  s << "\nWhat each map costs its caller (per frame, after the first: page faults of the update, then the "
+       "caller's own work right after it, a registration loop's preprocessing: a vector grown to the scan's size and a voxel hash map, allocated and freed):\n\n"
+       "| method | update faults | caller ms | caller faults | caller / scan_pass's |\n|---|--:|--:|--:|--:|\n";
+  for (const MethodSummary& m : summaries) {
+    s << "| " << m.name << " | " << fixed(m.update_faults, 0) << " | " << fixed(m.caller_ms, 3) << " | "
+      << fixed(m.caller_faults, 0) << " | " << ratio(&m, &MethodSummary::caller_ms, pass) << " |\n";
+  }
   if (const MethodSummary* clearing = find(summaries, "eco_clearing")) {
     s << "\nFree-space clearing: eco_clearing update / eco " << ratio(clearing, &MethodSummary::update_ms, eco)
       << ", Chamfer " << fixed(clearing->chamfer_m, 4) << " m against eco's " << (eco ? fixed(eco->chamfer_m, 4) : "–")

@@ -1,5 +1,6 @@
 #include "bench/runner.hpp"
 
+#include "bench/caller_work.hpp"
 #include "bench/chamfer.hpp"
 #include "bench/query_batch.hpp"
 #include "bench/workload_source.hpp"
@@ -69,9 +70,15 @@ BenchRun run_bench(const BenchOptions& given, const Progress& progress) {
       r.input_points = frame.points.size();
       std::optional<workloads::AttributedScan> attributed;  // made before the clock starts
       const ScanView scan = workloads::scan_for(frame, options.config.attributes, attributed);
+      const long faults = minor_faults();
       auto start = Clock::now();
       method.update(frame.world_T_sensor, scan);
       r.update_ms = ms_since(start);
+      r.update_faults = minor_faults() - faults;
+      const CallerWork caller = run_caller_work(scan);
+      r.caller_ms = caller.ms;
+      r.caller_faults = caller.faults;
+      sink += caller.sum;
       if (method.indexed()) {  // scan_pass would scan every point per query: not timed
         start = Clock::now();
         maps[m] = method.voxel_keys(options.voxel_resolution);

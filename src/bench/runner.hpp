@@ -14,6 +14,9 @@ struct FrameRecord {
   std::size_t frame = 0;
   std::size_t input_points = 0;  ///< points in the frame given to update
   double update_ms = 0.0;
+  long update_faults = 0;        ///< minor page faults during the update
+  double caller_ms = 0.0;        ///< the caller's own work after the update (bench/caller_work.hpp)
+  long caller_faults = 0;        ///< ... and its page faults
   double voxel_ms = 0.0;         ///< voxel map of the held points at voxel_resolution
   double knn_ms = 0.0;           ///< the frame's whole batch of queries
   std::size_t points = 0;        ///< held after the update

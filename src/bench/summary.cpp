@@ -18,6 +18,9 @@ MethodSummary summarize(const MethodRun& run) {
     const FrameRecord& r = run.frames[i];
     updates.push_back(r.update_ms);
     s.update_ms += r.update_ms;
+    s.update_faults += double(r.update_faults);
+    s.caller_ms += r.caller_ms;
+    s.caller_faults += double(r.caller_faults);
     s.voxel_ms += r.voxel_ms;
     s.knn_ms += r.knn_ms;
   }
@@ -36,7 +39,7 @@ MethodSummary summarize(const MethodRun& run) {
   const double n = double(run.frames.size());
   for (double* v : {&s.points, &s.nodes, &s.mean_depth, &s.chamfer_m}) *v /= n;
   const double timed = double(updates.size());
-  for (double* v : {&s.update_ms, &s.voxel_ms, &s.knn_ms}) *v /= timed;
+  for (double* v : {&s.update_ms, &s.update_faults, &s.caller_ms, &s.caller_faults, &s.voxel_ms, &s.knn_ms}) *v /= timed;
   s.bytes_per_point = holding > 0 ? s.bytes_per_point / double(holding) : 0.0;
   std::sort(updates.begin(), updates.end());
   const auto rank = std::size_t(std::ceil(0.99 * timed));  // nearest-rank percentile

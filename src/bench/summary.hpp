@@ -17,6 +17,9 @@ struct MethodSummary {
   double first_update_ms = 0.0; ///< the first frame's update: a build from nothing
   double update_ms = 0.0;       ///< mean over frames after the first
   double update_ms_p99 = 0.0;   ///< 99th percentile (nearest rank)
+  double update_faults = 0.0;   ///< mean page faults per update, over frames after the first
+  double caller_ms = 0.0;       ///< the caller's work after each update, mean over frames after the first
+  double caller_faults = 0.0;   ///< ... its page faults, mean
   double voxel_ms = 0.0;        ///< mean over frames after the first
   double knn_ms = 0.0;          ///< ... per batch of queries
   double points = 0.0;          ///< mean held

@@ -12,6 +12,7 @@
 // outgrows its bits (only when a caller counts past the cap: points re-expressed after the
 // precision origin moved may cross a wall) keeps the excess in a side table.
 
+#include "core/mapped_memory.hpp"
 #include "core/set_flags.hpp"
 
 #include <algorithm>
@@ -238,7 +239,7 @@ class CellCounts {
 
   void grow() {
     const std::size_t slots = slots_.empty() ? 256 : 2 * capacity();
-    std::vector<std::uint64_t> old(slots * stride_, 0);
+    MappedVector<std::uint64_t> old(slots * stride_, 0);
     old.swap(slots_);  // slots_ is the bigger, empty table now
     shift_ = 64 - std::countr_zero(slots);
     const Table table = view();
@@ -267,7 +268,7 @@ class CellCounts {
 
   int width_;           // bits a count: 1, 2, 4, 8 or 16
   std::size_t stride_;  // words a slot: the tag, then 64 counts of width_ bits
-  std::vector<std::uint64_t> slots_;
+  MappedVector<std::uint64_t> slots_;
   std::unordered_map<std::uint64_t, std::uint32_t> extra_;  // counts past their bits, by cell key
   std::size_t blocks_ = 0, cells_ = 0;
   int shift_ = 64;

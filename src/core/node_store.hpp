@@ -3,6 +3,7 @@
 // state, O(1) release.
 
 #include "core/geometry.hpp"
+#include "core/mapped_memory.hpp"
 
 #include <array>
 #include <cassert>
@@ -100,7 +101,7 @@ class NodeStore {
 
  private:
   template <class T>
-  static std::uint32_t take(std::vector<T>& pool, std::vector<std::uint32_t>& free) {
+  static std::uint32_t take(MappedVector<T>& pool, MappedVector<std::uint32_t>& free) {
     if (!free.empty()) {
       const std::uint32_t id = free.back();
       free.pop_back();
@@ -114,10 +115,10 @@ class NodeStore {
     return static_cast<std::uint32_t>(pool.size() - 1);
   }
 
-  std::vector<Node> nodes_;
-  std::vector<std::uint32_t> free_nodes_;
-  std::vector<ChildBlock> blocks_;
-  std::vector<std::uint32_t> free_blocks_;
+  MappedVector<Node> nodes_;
+  MappedVector<std::uint32_t> free_nodes_;
+  MappedVector<ChildBlock> blocks_;
+  MappedVector<std::uint32_t> free_blocks_;
   std::size_t live_ = 0;
 };
 

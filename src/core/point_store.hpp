@@ -6,6 +6,7 @@
 // holds. A block begins with the id of the leaf it was last handed to, so that a map that shrank
 // can move its blocks down and give the emptied pages back (compact()).
 
+#include "core/mapped_memory.hpp"
 #include "core/node_store.hpp"
 
 #include <algorithm>
@@ -232,7 +233,8 @@ class PointStore {
         done += p.block_bytes;
       }
       std::erase_if(p.free, [&](std::uint32_t i) { return i >= p.used; });
-      p.pages.resize((std::size_t(p.used) + (std::size_t{1} << p.per_page_shift) - 1) >> p.per_page_shift);
+      const std::size_t pages = (std::size_t(p.used) + (std::size_t{1} << p.per_page_shift) - 1) >> p.per_page_shift;
+      p.pages.erase(p.pages.begin() + std::ptrdiff_t(std::min(pages, p.pages.size())), p.pages.end());
       if (4 * p.pages.size() < p.pages.capacity()) p.pages.shrink_to_fit();
       if (4 * p.free.size() < p.free.capacity()) p.free.shrink_to_fit();
     }
@@ -264,15 +266,16 @@ class PointStore {
   static_assert(kClasses <= std::size_t{1} << (32 - kIndexBits));
 
   static constexpr std::uint32_t kIndexMask = (std::uint32_t{1} << kIndexBits) - 1;
-  static constexpr std::size_t kPageBytes = std::size_t{1} << 12;  // small: a sparse map pays little per size class
+  static constexpr std::size_t kPageBytes = kMappedFrom;  // small: a sparse map pays little per size class
+  static constexpr std::size_t kMostPageBytes = std::size_t{1} << 14;
 
   struct Pool {
     std::size_t block_bytes = 0;
     std::uint32_t per_page_shift = 0;  // blocks per page = 2^shift
-    std::size_t page_bytes = 0;
-    std::vector<std::unique_ptr<std::byte[]>> pages;
+    std::size_t page_bytes = 0;  // whole pages of the system's
+    MappedVector<MappedPage> pages;
     std::uint32_t used = 0;  // blocks handed out so far, free or not
-    std::vector<std::uint32_t> free;
+    MappedVector<std::uint32_t> free;
   };
   struct Block {
     float* x;
@@ -359,7 +362,14 @@ class PointStore {
     if (p.block_bytes == 0) {
       p.block_bytes = kOwnerBytes + std::size_t(capacity_of(c)) * std::size_t(3 + columns_.count()) * sizeof(float);
       while ((p.block_bytes << (p.per_page_shift + 1)) <= kPageBytes) ++p.per_page_shift;
-      p.page_bytes = p.block_bytes << p.per_page_shift;
+      // a page is mapped in whole pages of the system's (core/mapped_memory.hpp): more blocks a
+      // page until at most an eighth of it is left over, or it spans kMostPageBytes
+      const auto mapped = [](std::size_t bytes) { return (bytes + kPageBytes - 1) / kPageBytes * kPageBytes; };
+      const auto wasteful = [&](std::size_t bytes) { return 8 * (mapped(bytes) - bytes) > mapped(bytes); };
+      while (wasteful(p.block_bytes << p.per_page_shift) && (p.block_bytes << p.per_page_shift) < kMostPageBytes) {
+        ++p.per_page_shift;
+      }
+      p.page_bytes = mapped(p.block_bytes << p.per_page_shift);
     }
     std::uint32_t i;
     if (!p.free.empty()) {
@@ -368,7 +378,7 @@ class PointStore {
     } else {
       if (p.used > kIndexMask) throw std::length_error("eco: too many point blocks of one size");
       if ((p.used >> p.per_page_shift) == p.pages.size()) {
-        p.pages.push_back(std::make_unique_for_overwrite<std::byte[]>(p.page_bytes));
+        p.pages.emplace_back(p.page_bytes);
       }
       i = p.used++;
     }
@@ -378,7 +388,7 @@ class PointStore {
   }
 
   Columns columns_;
-  std::vector<Pool> pools_;
+  MappedVector<Pool> pools_;
 };
 
 }  // namespace eco::detail

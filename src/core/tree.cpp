@@ -103,8 +103,9 @@ void Tree::place_root(const Cell& cell, const Lattice& lattice) {
   make_root();
 }
 
-std::vector<std::pair<std::uint32_t, Cell>> Tree::detach_subtrees(int depth) {
-  std::vector<std::pair<std::uint32_t, Cell>> subtrees;
+const MappedVector<std::pair<std::uint32_t, Cell>>& Tree::detach_subtrees(int depth) {
+  MappedVector<std::pair<std::uint32_t, Cell>>& subtrees = buffers_.detached();
+  subtrees.clear();
   auto collect = [&](auto&& self, std::uint32_t id, const Cell& cell) -> void {
     if (cell.depth == depth) {
       subtrees.emplace_back(id, cell);
@@ -188,19 +189,21 @@ void Tree::make_root() {
 // Insertion
 
 template <class Point>
-void Tree::insert_batch(std::vector<Point>& batch) {
+void Tree::insert_points(std::span<Point> batch) {
   if (batch.empty()) return;
-  std::vector<Point>& temp = batch_buffers_.of<Point>().points;
-  temp.resize(batch.size());
-  std::vector<std::uint32_t>& slot_of = batch_buffers_.slot_of;  // the groups' sorts' second array, once grouped
-  std::vector<std::uint32_t>& codes = batch_buffers_.codes;
+  MappedVector<Point>& partitioned = buffers_.partitioned<Point>();
+  partitioned.resize(batch.size());
+  Point* points = batch.data();      // the batch, grouped once it is
+  Point* temp = partitioned.data();  // room for as many
+  MappedVector<std::uint32_t>& slot_of = buffers_.slots();  // the groups' sorts' second array, once grouped
+  MappedVector<std::uint32_t>& codes = buffers_.codes();
   slot_of.resize(batch.size());
   codes.resize(batch.size());
   // Group the points by their start-depth cell (a counting sort), then insert each group below
   // its start node (a large group sorted by the cells below it: insert_sorted) and add it to the
   // ancestors once.
   const int depth = start_.depth;
-  std::vector<std::uint32_t>& first = batch_buffers_.group_start;
+  MappedVector<std::uint32_t>& first = buffers_.group_starts();
   first.assign((depth == 0 ? 1 : start_.slots.size()) + 1, 0);
   if (depth == 0) {
     first[1] = std::uint32_t(batch.size());
@@ -214,20 +217,20 @@ void Tree::insert_batch(std::vector<Point>& batch) {
     std::uint32_t start = 0;
     for (std::size_t b = 1; b < first.size(); ++b) start += std::exchange(first[b], start);
     for (std::size_t i = 0; i < batch.size(); ++i) temp[first[std::size_t(slot_of[i]) + 1]++] = batch[i];
-    batch.swap(temp);
+    std::swap(points, temp);
   }
   for (std::size_t b = 0; b + 1 < first.size(); ++b) {
     if (first[b] == first[b + 1]) continue;
     prefetch_start_node(b + 1, first);
-    Point* group = batch.data() + first[b];
+    Point* group = points + first[b];
     const std::uint32_t m = first[b + 1] - first[b];
     Cell cell = depth == 0 ? root_cell_ : start_cell(std::uint32_t(b));
     const std::uint32_t id = depth == 0 ? root_ : start_node(cell, cell);
     if (m >= kSortedGroup) {
-      insert_sorted(id, cell, group, group + m, temp.data() + first[b], codes.data() + first[b],
+      insert_sorted(id, cell, group, group + m, temp + first[b], codes.data() + first[b],
                     slot_of.data() + first[b]);
     } else {
-      insert_range(id, cell, group, group + m, temp.data() + first[b]);
+      insert_range(id, cell, group, group + m, temp + first[b]);
     }
     const Node& top = nodes_[id];
     for (std::uint32_t up = top.parent; up != kNone; up = nodes_[up].parent) {
@@ -239,7 +242,7 @@ void Tree::insert_batch(std::vector<Point>& batch) {
   }
 }
 
-void Tree::prefetch_start_node(std::size_t from, const std::vector<std::uint32_t>& first) const {
+void Tree::prefetch_start_node(std::size_t from, std::span<const std::uint32_t> first) const {
   if (start_.depth == 0) return;
   for (std::size_t b = from; b + 1 < first.size(); ++b) {
     if (first[b] == first[b + 1]) continue;
@@ -247,26 +250,6 @@ void Tree::prefetch_start_node(std::size_t from, const std::vector<std::uint32_t
     return;
   }
 }
-
-namespace {
-
-template <class T>
-void trim(std::vector<T>& buffer, std::size_t used, std::size_t most_bytes) {
-  // Below this a buffer comes from the heap's free lists, not fresh pages: not worth keeping for a
-  // map that takes in few points a frame (a capped one), so it is given back, as is one larger
-  // than `most_bytes`; the others are kept at what the frames use. In bytes, whatever the element
-  // (the index arrays' entries are 4 B, a point's 12 or 28).
-  constexpr std::size_t kKeepBytes = std::size_t{112} << 10;
-  const std::size_t bytes = buffer.capacity() * sizeof(T);
-  if (bytes <= kKeepBytes || bytes > most_bytes) {
-    std::vector<T>().swap(buffer);
-  } else if (buffer.capacity() > 2 * used) {
-    std::vector<T>().swap(buffer);
-    buffer.reserve(used);
-  }
-}
-
-}  // namespace
 
 void Tree::give_back_memory(std::size_t floor) {
   const std::size_t free = points_.free_bytes();
@@ -277,21 +260,8 @@ void Tree::give_back_memory(std::size_t floor) {
   points_.compact(kCompactionBudget, holds, [&](std::uint32_t owner, std::uint32_t link) { nodes_[owner].link = link; });
 }
 
-void Tree::trim_buffers(std::size_t used) {
-  const std::size_t most = points_.bytes() / kBufferShare;
-  std::apply([&](auto&... typed) { ((trim(typed.scan, used, most), trim(typed.points, used, most)), ...); },
-             batch_buffers_.by_type);
-  trim(batch_buffers_.slot_of, used, most);
-  trim(batch_buffers_.codes, used, most);
-  trim(scratch_, used, most);
-  trim(split_order_, used, most);
-}
-
 std::size_t Tree::buffer_bytes() const {
-  const BatchBuffers& b = batch_buffers_;
-  const std::size_t batches = std::apply([](const auto&... typed) { return (typed.bytes() + ...); }, b.by_type);
-  return batches + scratch_.capacity() * sizeof(StoredPoint) + split_order_.capacity() * sizeof(std::uint32_t) +
-         (b.slot_of.capacity() + b.codes.capacity() + b.group_start.capacity()) * sizeof(std::uint32_t) +
+  return buffers_.bytes() +
          (clearing_memory_.image.storage.capacity() + clearing_memory_.before.storage.capacity() +
           clearing_memory_.pixel_tables.capacity()) *
              sizeof(double) +
@@ -398,8 +368,9 @@ void Tree::split(std::uint32_t id, const Cell& cell, const std::array<std::uint3
   const PointSpan points = points_.span(block, m);
   // Each point's octant found once, then the points' indices grouped by octant (a counting sort):
   // each child copies its points straight from the block's columns.
-  split_order_.resize(2 * std::size_t(m));
-  std::uint32_t* const octant = split_order_.data();
+  MappedVector<std::uint32_t>& order = buffers_.split_order();
+  order.resize(2 * std::size_t(m));
+  std::uint32_t* const octant = order.data();
   std::uint32_t* const grouped = octant + m;
   const std::array<double, 3> middle = lattice_.middle(cell);
   for (std::uint32_t i = 0; i < m; ++i) {
@@ -523,17 +494,18 @@ bool Tree::should_collapse(std::uint32_t id) const {
 }
 
 void Tree::collapse(std::uint32_t id) {
-  const std::size_t base = scratch_.size();
+  std::vector<StoredPoint>& scratch = buffers_.collapsed();
+  const std::size_t base = scratch.size();
   for (int o = 0; o < 8; ++o) {
     const std::uint32_t ch = nodes_.child(id, o);
-    if (ch != kNone) dissolve(ch, &scratch_);
+    if (ch != kNone) dissolve(ch, &scratch);
   }
   nodes_.make_leaf_of_inner(id);
   Node& n = nodes_[id];
   n.count = 0;
-  points_.append(n.link, id, 0, scratch_.data() + base, scratch_.data() + scratch_.size());
-  n.count = std::uint32_t(scratch_.size() - base);
-  scratch_.resize(base);
+  points_.append(n.link, id, 0, scratch.data() + base, scratch.data() + scratch.size());
+  n.count = std::uint32_t(scratch.size() - base);
+  scratch.resize(base);
   refit(id);  // its subcells (bounds and ages as its children's were)
 }
 
@@ -585,7 +557,7 @@ void Tree::rebuild_start_table(int depth) {
   walk(walk, root_, root_cell_);
 }
 
-template void Tree::insert_batch(std::vector<StoredPoint>&);
-template void Tree::insert_batch(std::vector<BarePoint>&);
+template void Tree::insert_points(std::span<StoredPoint>);
+template void Tree::insert_points(std::span<BarePoint>);
 
 }  // namespace eco::detail

@@ -8,6 +8,7 @@
 #include "core/node_store.hpp"
 #include "core/point_store.hpp"
 #include "core/motion.hpp"
+#include "core/working_buffers.hpp"
 
 #include <eco/config.hpp>
 #include <eco/types.hpp>
@@ -19,6 +20,7 @@
 #include <bit>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -56,7 +58,7 @@ class Tree {
   /// Bytes held: nodes, leaf blocks, start table, working buffers, density counts.
   [[nodiscard]] std::size_t bytes() const;
   /// Of those, the working buffers' (insertion's, and free-space clearing's images and tables),
-  /// kept between updates so that no frame pays for fresh pages.
+  /// kept between updates so that no frame pays for fresh pages (core/working_buffers.hpp).
   [[nodiscard]] std::size_t buffer_bytes() const;
 
   /// The current frame's motion (set_motion); none before the first.
@@ -117,29 +119,29 @@ class Tree {
   /// into free ones below, kCompactionBudget bytes an update at most, and the pages behind them
   /// are released. No point changes, only where it lies.
   void give_back_memory(std::size_t floor = kMemoryFloor);
-  static constexpr std::size_t kFreeShare = 64;                       // a sixty-fourth
+  static constexpr std::size_t kFreeShare = 8;
   static constexpr std::size_t kMemoryFloor = std::size_t{1} << 14;   // below, not worth it (four pages)
   static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
 
   // --- insertion --------------------------------------------------------------------------------
   /// Inserts every point of `batch` (each in the root cell), reordering it: the points are
   /// partitioned by octant top-down from the start table's depth, so each node on their way
-  /// is visited once per batch, not once per point. Point: StoredPoint, or BarePoint when the
-  /// store keeps no column.
-  template <class Point>
-  void insert_batch(std::vector<Point>& batch);
+  /// is visited once per batch, not once per point.
+  void insert_batch(std::span<StoredPoint> batch) { insert_points(batch); }
+  /// The same for points without columns (the store keeps none).
+  void insert_batch(std::span<BarePoint> batch) { insert_points(batch); }
   /// Inserts the new points `collect(push)` hands to push(const Point&), in batches of at most
-  /// kInsertChunk through buffers the tree keeps: no frame pays for fresh pages, and the buffers
-  /// stay small however many points a frame brings. Each batch is shown to
-  /// `look(const std::vector<Point>&)` before it goes in. Returns how many.
+  /// kInsertChunk through the working buffers: the buffers stay small however many points a
+  /// frame brings. Each batch is shown to `look(std::span<const Point>)` before it goes in.
+  /// Returns how many.
   template <class Point, class Collect, class Look>
   std::size_t insert_collected(Collect&& collect, Look&& look) {
-    std::vector<Point>& batch = batch_buffers_.of<Point>().scan;
+    MappedVector<Point>& batch = buffers_.batch<Point>();
     std::size_t n = 0;
     const auto insert = [&] {
       n += batch.size();
-      look(std::as_const(batch));
-      insert_batch(batch);
+      look(std::span<const Point>(batch));
+      insert_points(std::span<Point>(batch));
       batch.clear();
     };
     batch.clear();
@@ -148,7 +150,7 @@ class Tree {
       if (batch.size() == kInsertChunk) insert();
     });
     insert();
-    trim_buffers(std::min(n, kInsertChunk));
+    buffers_.end_update(std::min(n, kInsertChunk));
     return n;
   }
   /// Points per batch of insert_collected: large enough that a batch shares the walk down to most
@@ -230,7 +232,8 @@ class Tree {
   void move_lattice(const Lattice& lattice) { lattice_ = lattice; }
   /// Quantised re-centring, first half: releases the nodes above `depth` and hands back the
   /// subtrees at `depth` with their cells; the tree is left without a root.
-  std::vector<std::pair<std::uint32_t, Cell>> detach_subtrees(int depth);
+  /// The list lives in the working buffers until the next call.
+  const MappedVector<std::pair<std::uint32_t, Cell>>& detach_subtrees(int depth);
   /// Links subtree `id` (cell `cell`, below the root) under the root, creating the inner nodes
   /// on its way; refit_above() then fixes their counts and bounds.
   void attach_subtree(std::uint32_t id, const Cell& cell);
@@ -287,19 +290,13 @@ class Tree {
   std::uint32_t start_node(const Cell& cell, Cell& at);
   /// Prefetches the start node of the first non-empty group at or after `from` (groups of
   /// insert_batch, `first` their bounds), so its miss overlaps the work on the group before.
-  void prefetch_start_node(std::size_t from, const std::vector<std::uint32_t>& first) const;
+  void prefetch_start_node(std::size_t from, std::span<const std::uint32_t> first) const;
   void note_created(std::uint32_t id, const Cell& cell);
   std::int64_t start_slot(const Cell& cell) const;
   /// The start-depth cell whose slot is `slot` (start_slot's inverse).
   [[nodiscard]] Cell start_cell(std::uint32_t slot) const;
-  /// Gives back the working buffers' memory when it is over twice the `used` points a frame needs
-  /// now (a first frame that took a whole map in), so they keep what steady frames use; a buffer
-  /// of up to ~110 KB (every index array: a batch is at most kInsertChunk points), or more than a
-  /// kBufferShare of the point pools' bytes (a capped map's), is given back whole after each
-  /// update. (A sixteenth, and thrice, kept 1.7 B a held point more on kitti_mini_08 at the cap
-  /// with attributes; the update measured level.)
-  void trim_buffers(std::size_t used);
-  static constexpr std::size_t kBufferShare = 32;
+  template <class Point>
+  void insert_points(std::span<Point> batch);
 
   Config cfg_;
   NodeStore nodes_;
@@ -314,19 +311,7 @@ class Tree {
   StartTable start_;
   CellCounts density_;  // points per density-cap cell, kept while the cap is on
   WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
-  std::vector<StoredPoint> scratch_;  // points of a subtree collapsed
-  std::vector<std::uint32_t> split_order_;  // a leaf being split: its points' octants, then their order
-  template <class Point>
-  struct PointBuffers {
-    std::vector<Point> scan, points;
-    [[nodiscard]] std::size_t bytes() const { return (scan.capacity() + points.capacity()) * sizeof(Point); }
-  };
-  struct BatchBuffers {  // insert_batch's and insert_collected's, kept so that no frame pays for fresh pages
-    std::tuple<PointBuffers<StoredPoint>, PointBuffers<BarePoint>> by_type;
-    std::vector<std::uint32_t> slot_of, group_start, codes;
-    template <class Point>
-    PointBuffers<Point>& of() { return std::get<PointBuffers<Point>>(by_type); }
-  } batch_buffers_;
+  WorkingBuffers buffers_;
   ClearingMemory clearing_memory_;
 };
 

@@ -17,7 +17,7 @@ ArrivalCheck::ArrivalCheck(Tree& tree, const Motion& motion, const Tree::KeptIma
       leaving_(tree.clearing_memory().leaving) {}
 
 template <class Point>
-void ArrivalCheck::operator()(const std::vector<Point>& batch) {
+void ArrivalCheck::operator()(std::span<const Point> batch) {
   const auto take = [&](std::uint32_t tag, std::uint32_t pixel, double squared_range) {
     if (judge_.seen_through(pixel, squared_range)) leaving_.push_back(as_stored(batch[tag]));
   };
@@ -27,8 +27,8 @@ void ArrivalCheck::operator()(const std::vector<Point>& batch) {
   sink.flush();
 }
 
-template void ArrivalCheck::operator()(const std::vector<StoredPoint>&);
-template void ArrivalCheck::operator()(const std::vector<BarePoint>&);
+template void ArrivalCheck::operator()(std::span<const StoredPoint>);
+template void ArrivalCheck::operator()(std::span<const BarePoint>);
 
 namespace {
 

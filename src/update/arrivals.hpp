@@ -8,6 +8,7 @@
 #include "update/pixel_lookup.hpp"
 #include "update/scan_judge.hpp"
 
+#include <span>
 #include <vector>
 
 namespace eco::detail {
@@ -20,7 +21,7 @@ class ArrivalCheck {
   ArrivalCheck(Tree& tree, const Motion& motion, const Tree::KeptImage& before);
   /// Judges `batch`, new points about to be inserted (StoredPoints or BarePoints).
   template <class Point>
-  void operator()(const std::vector<Point>& batch);
+  void operator()(std::span<const Point> batch);
 
  private:
   PixelLookup pixels_;

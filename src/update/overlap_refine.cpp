@@ -31,7 +31,7 @@ std::pair<Cell, Lattice> root_for(const Tree& t, const Motion& motion) {
 /// Quantised: re-link the lattice-fixed depth-k subtrees under new top levels.
 void relink(Tree& t, const Cell& new_root, std::vector<StoredPoint>& displaced, UpdateStats& stats) {
   const int k = int(t.config().quantum_levels);
-  const auto subtrees = t.detach_subtrees(k);
+  const auto& subtrees = t.detach_subtrees(k);
   t.place_root(new_root, t.lattice());
   for (const auto& [id, cell] : subtrees) {
     if (t.lattice().encloses(new_root, cell)) {

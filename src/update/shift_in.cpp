@@ -68,7 +68,7 @@ std::size_t take_in(Tree& tree, const Motion& motion, ScanView scan, const Tree:
   const bool timed_age = tree.config().max_age_seconds > 0.0;
   std::optional<ArrivalCheck> arrivals;
   if (before != nullptr) arrivals.emplace(tree, motion, *before);
-  const auto check = [&](const std::vector<Point>& batch) {
+  const auto check = [&](std::span<const Point> batch) {
     if (arrivals) (*arrivals)(batch);
   };
   return tree.insert_collected<Point>([&](auto&& insert) {

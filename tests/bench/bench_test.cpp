@@ -92,7 +92,7 @@ void expect_tables_line_up(const std::string& md, const nlohmann::json& summary)
   std::istringstream lines(md);
   std::string line;
   std::vector<std::vector<std::string>> table;
-  int tables = 0, checked_rows = 0;
+  int tables = 0, checked_rows = 0, caller_rows = 0;
   auto finish = [&] {
     if (table.empty()) return;
     ++tables;
@@ -100,7 +100,18 @@ void expect_tables_line_up(const std::string& md, const nlohmann::json& summary)
     for (std::size_t r = 1; r < table.size(); ++r) {
       ASSERT_EQ(table[r].size(), header.size()) << "table " << tables << " row " << r;
     }
-    if (header.size() < 2 || header[1] != "first update ms") return;
+    if (header.size() < 2) return;
+    if (header[1] == "update faults") {  // what each map costs its caller
+      for (std::size_t r = 2; r < table.size(); ++r) {
+        const nlohmann::json& m = summary.at("methods").at(table[r][0]);
+        EXPECT_NEAR(std::stod(table[r][1]), m.at("update_faults").get<double>(), 0.5 + 1e-9);
+        EXPECT_NEAR(std::stod(table[r][2]), m.at("caller_ms").get<double>(), 5e-4 + 1e-9);
+        EXPECT_NEAR(std::stod(table[r][3]), m.at("caller_faults").get<double>(), 0.5 + 1e-9);
+        ++caller_rows;
+      }
+      return;
+    }
+    if (header[1] != "first update ms") return;
     auto column = [&](const std::string& heading) {
       const auto at = std::find(header.begin(), header.end(), heading);
       EXPECT_NE(at, header.end()) << heading;
@@ -137,8 +148,9 @@ void expect_tables_line_up(const std::string& md, const nlohmann::json& summary)
     }
   }
   finish();
-  EXPECT_EQ(tables, 2);
+  EXPECT_EQ(tables, 3);
   EXPECT_EQ(checked_rows, int(summary.at("methods").size()));
+  EXPECT_EQ(caller_rows, int(summary.at("methods").size()));
 }
 
 /// The chart labels both axes with ticks: frames from 0 by a whole step, ms from 0 upwards.

@@ -1,0 +1,67 @@
+#pragma once
+// The tree's larger memory is mapped for it alone, not taken from the process's heap.
+//
+// A map updated between its caller's own per-frame allocations would otherwise put its blocks and
+// buffers into the free space the caller reuses each frame: the caller's next large allocations
+// no longer fit there, go to the heap's top, and are handed back to the kernel when freed, so
+// every frame faults fresh pages in the caller's code (a KISS-ICP-like client: 7 page faults a
+// frame alone, ~800 with the map's memory in the heap, 7 again with it mapped apart). Memory of
+// the tree's own leaves the caller's heap as if the map were not there.
+//
+// Allocations under a page still come from the heap (a page each would waste most of it), and so
+// does everything under AddressSanitizer, which checks heap memory only.
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace eco::detail {
+
+/// Bytes from which an allocation is mapped rather than taken from the heap: one page.
+inline constexpr std::size_t kMappedFrom = std::size_t{1} << 12;
+
+/// Whether allocations from kMappedFrom on are mapped (not under AddressSanitizer).
+[[nodiscard]] bool allocations_are_mapped();
+
+/// `bytes` (> 0) of memory: mapped pages from kMappedFrom on, else the heap's. Throws
+/// std::bad_alloc when there is none.
+[[nodiscard]] void* allocate_bytes(std::size_t bytes);
+/// Gives back what allocate_bytes(bytes) returned.
+void release_bytes(void* memory, std::size_t bytes) noexcept;
+
+/// A standard allocator over allocate_bytes: for the containers the tree keeps.
+template <class T>
+struct MappedAllocator {
+  using value_type = T;
+  MappedAllocator() = default;
+  template <class U>
+  MappedAllocator(const MappedAllocator<U>&) noexcept {}  // NOLINT: converts as std::allocator does
+  [[nodiscard]] T* allocate(std::size_t n) { return static_cast<T*>(allocate_bytes(n * sizeof(T))); }
+  void deallocate(T* p, std::size_t n) noexcept { release_bytes(p, n * sizeof(T)); }
+  friend bool operator==(MappedAllocator, MappedAllocator) noexcept { return true; }
+};
+
+/// `bytes` from allocate_bytes, owned: given back when it goes.
+class MappedPage {
+ public:
+  explicit MappedPage(std::size_t bytes) : memory_(static_cast<std::byte*>(allocate_bytes(bytes))), bytes_(bytes) {}
+  MappedPage(MappedPage&& other) noexcept
+      : memory_(std::exchange(other.memory_, nullptr)), bytes_(other.bytes_) {}
+  MappedPage& operator=(MappedPage&& other) noexcept {
+    std::swap(memory_, other.memory_);
+    std::swap(bytes_, other.bytes_);
+    return *this;
+  }
+  ~MappedPage() { release_bytes(memory_, bytes_); }
+  [[nodiscard]] std::byte* get() const { return memory_; }
+
+ private:
+  std::byte* memory_;
+  std::size_t bytes_;
+};
+
+/// A vector whose storage is the tree's own (mapped once it reaches a page).
+template <class T>
+using MappedVector = std::vector<T, MappedAllocator<T>>;
+
+}  // namespace eco::detail
