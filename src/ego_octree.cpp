@@ -1,6 +1,7 @@
 // EgoOctree: construction, accessors, iteration and statistics. The update is in update/, the
 // queries in query/.
 
+#include "clearing/clearing.hpp"
 #include "core/invariants.hpp"
 #include "core/tree.hpp"
 #include "query/frames.hpp"
@@ -11,7 +12,9 @@
 
 namespace eco {
 
-EgoOctree::EgoOctree(const Config& config) : tree_(std::make_unique<detail::Tree>(config)) {}
+EgoOctree::EgoOctree(const Config& config)
+    : tree_(std::make_unique<detail::Tree>(config)),
+      clearing_(config.clearing.enabled ? std::make_unique<detail::ClearingState>() : nullptr) {}
 EgoOctree::~EgoOctree() = default;
 EgoOctree::EgoOctree(EgoOctree&&) noexcept = default;
 EgoOctree& EgoOctree::operator=(EgoOctree&&) noexcept = default;
@@ -45,12 +48,16 @@ std::vector<Eigen::Vector3d> EgoOctree::points() const {
 
 std::vector<HeldPoint> EgoOctree::points_with_attributes() const { return detail::held_points(*tree_); }
 
-Stats EgoOctree::stats() const { return detail::tree_stats(*tree_); }
+Stats EgoOctree::stats() const {
+  Stats s = detail::tree_stats(*tree_);
+  if (clearing_) s.bytes += clearing_->bytes();
+  return s;
+}
 
 // --- the update (src/update) ------------------------------------------------------------------
 
 const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  last_update_ = detail::run_update(*tree_, world_T_sensor, scan);
+  last_update_ = detail::run_update(*tree_, clearing_.get(), world_T_sensor, scan);
   return last_update_;
 }
 
@@ -108,49 +115,4 @@ std::vector<Eigen::Vector3d> EgoOctree::voxelize(double resolution, Frame frame)
 
 std::string EgoOctree::check_invariants() const { return detail::check_tree(*tree_); }
 
-namespace detail {
-
-void for_each_held(const Tree& t, const std::function<void(const Eigen::Vector3d&)>& visit) {
-  if (t.root() == kNone) return;
-  walk_leaves(
-      t, t.root(), [](const Aabb&) { return 2; }, [&](const StoredPoint& s, bool) { visit(t.to_world(s.p)); });
-}
-
-std::vector<HeldPoint> held_points(const Tree& t) {
-  std::vector<HeldPoint> out;
-  out.reserve(t.size());
-  if (t.root() == kNone) return out;
-  walk_leaves(
-      t, t.root(), [](const Aabb&) { return 2; },
-      [&](const StoredPoint& s, bool) { out.push_back({t.to_world(s.p), attributes_of(t, s)}); });
-  return out;
-}
-
-Stats tree_stats(const Tree& t) {
-  Stats s;
-  s.points = t.size();
-  s.nodes = t.nodes().live();
-  s.bytes = t.bytes();
-  if (t.root() == kNone) return s;
-  double depth_sum = 0.0;
-  auto walk = [&](auto&& self, std::uint32_t id) -> void {
-    const Node& n = t.nodes()[id];
-    if (n.leaf) {
-      if (n.count == 0) return;
-      ++s.leaves;
-      depth_sum += n.depth;
-      s.max_leaf_depth = std::max(s.max_leaf_depth, int(n.depth));
-      return;
-    }
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = t.nodes().child(id, o);
-      if (ch != kNone) self(self, ch);
-    }
-  };
-  walk(walk, t.root());
-  s.mean_leaf_depth = s.leaves ? depth_sum / double(s.leaves) : 0.0;
-  return s;
-}
-
-}  // namespace detail
 }  // namespace eco

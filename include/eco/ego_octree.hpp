@@ -36,7 +36,8 @@ namespace eco {
 
 namespace detail {
 class Tree;
-}
+struct ClearingState;
+}  // namespace detail
 
 class EgoOctree {
  public:
@@ -129,6 +130,7 @@ class EgoOctree {
 
  private:
   std::unique_ptr<detail::Tree> tree_;
+  std::unique_ptr<detail::ClearingState> clearing_;  // free-space clearing's, while Config::clearing is on
   UpdateStats last_update_;
 };
 

@@ -42,13 +42,13 @@ class OctreeBase final : public TreeMethod {
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override {
     detail::Tree& t = tree_;
     UpdateStats stats = detail::begin_update(t.config(), world_T_sensor, scan);
-    detail::release_arrivals(t, stats);  // the last update's arrivals into space seen empty
+    detail::ClearingState* clearing = clearing_.get();
+    if (clearing) detail::release_arrivals(t, *clearing, stats);  // the last update's arrivals into space seen empty
     auto [motion, held] = detail::advance_ego_motion(t, world_T_sensor, scan, stats);  // a moved origin hands back all
-    const detail::Tree::KeptImage* before = nullptr;
     if (memory_ == Memory::PointsStillInTheBox) {
-      detail::prune_shift_out(t, motion, stats);                 // what left the box or aged out
-      before = detail::clear_free_space(t, motion, scan, held, stats);  // what the scan sees through
-      t.take_points(held);                                       // the rest, to be rebuilt from scratch
+      detail::prune_shift_out(t, motion, stats);                                      // what left the box or aged out
+      if (clearing) detail::clear_free_space(t, *clearing, motion, scan, held, stats);  // what the scan sees through
+      t.take_points(held);                                                            // the rest, rebuilt from scratch
     } else {
       t.take_points(held);
       held.clear();             // nothing earlier is kept
@@ -57,7 +57,7 @@ class OctreeBase final : public TreeMethod {
     held = detail::refine_overlap(t, motion, std::move(held), stats);  // a new, empty root on the box
     t.rebuild_start_table(0);  // the paper's: every point from the root
     detail::reinsert(t, held, stats);
-    detail::insert_scan(t, motion, scan, before, stats);
+    detail::insert_scan(t, motion, scan, clearing, stats);
   }
 
  private:

@@ -3,12 +3,14 @@
 // blocks, insertion, splitting) and answer queries with the same code (src/query); only their
 // update strategy differs. This base class provides everything but update().
 
-#include "core/tree.hpp"
+#include "clearing/clearing.hpp"
 #include "core/invariants.hpp"
+#include "core/tree.hpp"
 #include "query/queries.hpp"
 
 #include <eco/baselines/method.hpp>
 
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -16,7 +18,10 @@ namespace eco::baselines {
 
 class TreeMethod : public Method {
  public:
-  TreeMethod(std::string name, const Config& config) : name_(std::move(name)), tree_(config) {}
+  TreeMethod(std::string name, const Config& config)
+      : name_(std::move(name)),
+        tree_(config),
+        clearing_(config.clearing.enabled ? std::make_unique<detail::ClearingState>() : nullptr) {}
 
   [[nodiscard]] std::string name() const override { return name_; }
   std::size_t knn(const Eigen::Vector3d& query, std::span<Neighbor> out) const override {
@@ -42,7 +47,11 @@ class TreeMethod : public Method {
   [[nodiscard]] std::size_t size() const override {
     return tree_.size();
   }
-  [[nodiscard]] Stats stats() const override { return detail::tree_stats(tree_); }
+  [[nodiscard]] Stats stats() const override {
+    Stats s = detail::tree_stats(tree_);
+    if (clearing_) s.bytes += clearing_->bytes();
+    return s;
+  }
   [[nodiscard]] Eigen::Vector3d precision_origin() const override { return tree_.anchor(); }
   [[nodiscard]] std::string check_invariants() const override { return detail::check_tree(tree_, holds_only_the_box()); }
   [[nodiscard]] const Config& config() const override { return tree_.config(); }
@@ -53,6 +62,7 @@ class TreeMethod : public Method {
   [[nodiscard]] virtual bool holds_only_the_box() const { return true; }
   std::string name_;
   detail::Tree tree_;
+  std::unique_ptr<detail::ClearingState> clearing_;  // free-space clearing's, while Config::clearing is on
 };
 
 }  // namespace eco::baselines

@@ -4,7 +4,6 @@
 #include "core/tree.hpp"
 #include "core/invariants.hpp"
 
-#include <eco/ego_octree.hpp>
 
 #include <sstream>
 

@@ -261,11 +261,7 @@ void Tree::give_back_memory(std::size_t floor) {
 }
 
 std::size_t Tree::buffer_bytes() const {
-  return buffers_.bytes() +
-         (clearing_memory_.image.storage.capacity() + clearing_memory_.before.storage.capacity() +
-          clearing_memory_.pixel_tables.capacity()) *
-             sizeof(double) +
-         clearing_memory_.leaving.capacity() * sizeof(StoredPoint);
+  return buffers_.bytes();
 }
 
 std::uint32_t Tree::start_node(const Cell& cell, Cell& at) {

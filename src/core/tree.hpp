@@ -57,8 +57,8 @@ class Tree {
   [[nodiscard]] std::size_t size() const { return root_ == kNone ? 0 : nodes_[root_].count; }
   /// Bytes held: nodes, leaf blocks, start table, working buffers, density counts.
   [[nodiscard]] std::size_t bytes() const;
-  /// Of those, the working buffers' (insertion's, and free-space clearing's images and tables),
-  /// kept between updates so that no frame pays for fresh pages (core/working_buffers.hpp).
+  /// Of those, the working buffers' (core/working_buffers.hpp), kept between updates so that no
+  /// frame pays for fresh pages.
   [[nodiscard]] std::size_t buffer_bytes() const;
 
   /// The current frame's motion (set_motion); none before the first.
@@ -163,21 +163,6 @@ class Tree {
   std::size_t judge_density(const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed) {
     return judge_group(density_, density_grid_, cfg_.density_cap, points, n, passed);
   }
-  /// A scan's range image (src/update/range_image.hpp), with its update's frame and pose.
-  struct KeptImage {
-    std::vector<double> storage;
-    std::uint32_t frame = 0;  // 0: none yet
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  };
-  /// What free-space clearing keeps between frames (src/update/free_space.cpp, arrivals.cpp), so
-  /// that no frame pays for fresh pages or computes the sensor's tables again; counted in bytes().
-  struct ClearingMemory {
-    KeptImage image;                   // this update's scan
-    KeptImage before;                  // the last update's (clearing.arrivals)
-    std::vector<double> pixel_tables;  // the pixel lookup's walls and bins (src/update/pixel_lookup.hpp)
-    std::vector<StoredPoint> leaving;  // arrivals into space the scan before saw empty: they leave next update
-  };
-  ClearingMemory& clearing_memory() { return clearing_memory_; }
   /// Fills the start table (where insertion starts) from the current tree at `depth`.
   void rebuild_start_table(int depth);
 
@@ -312,7 +297,6 @@ class Tree {
   CellCounts density_;  // points per density-cap cell, kept while the cap is on
   WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
   WorkingBuffers buffers_;
-  ClearingMemory clearing_memory_;
 };
 
 }  // namespace eco::detail

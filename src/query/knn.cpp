@@ -6,7 +6,6 @@
 #include "query/frames.hpp"
 #include "query/queries.hpp"
 
-#include <eco/ego_octree.hpp>
 
 #include <algorithm>
 #include <bit>

@@ -1,3 +1,6 @@
+// Stage 1: the frame's motion (core/motion.hpp) entered into the tree, and what an origin move
+// re-expresses.
+
 #include "update/stages.hpp"
 
 #include <algorithm>
@@ -6,15 +9,6 @@
 
 namespace eco::detail {
 namespace {
-
-constexpr double kOriginStep = 1024.0;   // the precision origin moves in whole steps of this [m]
-constexpr double kOriginReach = 2048.0;  // ... once the sensor is farther than this from it [m]
-constexpr double kClockStep = 64.0;     // the time origin moves in whole steps of this [s]
-constexpr double kClockReach = 128.0;   // ... once the latest time is farther than this from it [s]
-
-Eigen::Vector3d nearest_origin(const Eigen::Vector3d& position) {
-  return (position / kOriginStep).array().round().matrix() * kOriginStep;
-}
 
 /// Takes every held point out of the tree, re-expressed against the new precision origin (rounded
 /// once more to float); points the rounding takes out of the box, or past the age limit, are
@@ -40,44 +34,6 @@ double latest_time(ScanView scan, const Config& config) {
 }
 
 }  // namespace
-
-Clock Clock::after(double scan_latest, bool move) const {
-  Clock next = *this;
-  next.shift.reset();
-  if (!(scan_latest > latest)) return next;
-  const bool first = latest == -std::numeric_limits<double>::infinity();
-  next.latest = scan_latest;
-  if (first || (move && scan_latest - origin > kClockReach)) {
-    next.origin = std::floor(scan_latest / kClockStep) * kClockStep;
-    if (!first) next.shift = origin - next.origin;
-  }
-  return next;
-}
-
-Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor,
-                                     bool first) {
-  if (first || (position - anchor).cwiseAbs().maxCoeff() > kOriginReach) return nearest_origin(position);
-  return anchor;
-}
-
-Motion next_motion(const Eigen::Isometry3d& pose, const std::optional<Motion>& last, double box_side,
-                   bool moves_origin, double scan_latest) {
-  Motion m;
-  m.pose = pose;
-  m.clock = (last ? last->clock : Clock{}).after(scan_latest, moves_origin);
-  const Eigen::Vector3d position = pose.translation();
-  if (!last) {
-    m.anchor = precision_origin_for(position, Eigen::Vector3d::Zero(), true);
-  } else {
-    m.anchor = moves_origin ? precision_origin_for(position, last->anchor, false) : last->anchor;
-    if (m.anchor != last->anchor) m.origin_shift = last->anchor - m.anchor;
-    m.previous = ego_box(last->pose.translation(), m.anchor, box_side);
-    m.moved = (position - last->pose.translation()).norm();
-    m.frame = last->frame + 1;
-  }
-  m.box = ego_box(position, m.anchor, box_side);
-  return m;
-}
 
 EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan,
                              UpdateStats& stats) {

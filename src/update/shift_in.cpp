@@ -1,5 +1,5 @@
+#include "clearing/clearing.hpp"
 #include "update/admission.hpp"
-#include "update/arrivals.hpp"
 #include "update/stages.hpp"
 
 #include <algorithm>
@@ -26,10 +26,10 @@ int start_depth(const Tree& t, const Motion& motion) {
 }  // namespace
 
 void insert_shift_in(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint> displaced,
-                     const Tree::KeptImage* before, UpdateStats& stats) {
+                     ClearingState* clearing, UpdateStats& stats) {
   place_start_table(tree, motion);
   reinsert(tree, displaced, stats);
-  insert_scan(tree, motion, scan, before, stats);
+  insert_scan(tree, motion, scan, clearing, stats);
 }
 
 void place_start_table(Tree& tree, const Motion& motion) { tree.rebuild_start_table(start_depth(tree, motion)); }
@@ -61,13 +61,13 @@ std::size_t drop_aged(const Tree& tree, AdmittedGroup& group, const Make& make) 
 /// Inserts the scan points the policy admits and the density cap passes, each as
 /// make(stored coordinates, scan index) makes it; returns how many.
 template <class Make>
-std::size_t take_in(Tree& tree, const Motion& motion, ScanView scan, const Tree::KeptImage* before,
-                    UpdateStats& stats, const Make& make) {
+std::size_t take_in(Tree& tree, const Motion& motion, ScanView scan, ClearingState* clearing, UpdateStats& stats,
+                    const Make& make) {
   static_assert(kAdmitGroup <= kDensityGroup, "an admitted group is judged whole");
   using Point = decltype(make(std::array<float, 3>{}, std::uint32_t{}));
   const bool timed_age = tree.config().max_age_seconds > 0.0;
   std::optional<ArrivalCheck> arrivals;
-  if (before != nullptr) arrivals.emplace(tree, motion, *before);
+  if (clearing && judges_arrivals(tree.config(), *clearing, motion)) arrivals.emplace(tree.config(), *clearing, motion);
   const auto check = [&](std::span<const Point> batch) {
     if (arrivals) (*arrivals)(batch);
   };
@@ -84,16 +84,15 @@ std::size_t take_in(Tree& tree, const Motion& motion, ScanView scan, const Tree:
 
 }  // namespace
 
-void insert_scan(Tree& tree, const Motion& motion, ScanView scan, const Tree::KeptImage* before,
-                 UpdateStats& stats) {
+void insert_scan(Tree& tree, const Motion& motion, ScanView scan, ClearingState* clearing, UpdateStats& stats) {
   const Columns& kept = tree.points().columns();
   if (kept.count() == 0) {  // coordinates alone: the batches move less than half the bytes
-    stats.inserted = take_in(tree, motion, scan, before, stats,
+    stats.inserted = take_in(tree, motion, scan, clearing, stats,
                              [](const std::array<float, 3>& p, std::uint32_t) { return BarePoint{p}; });
     return;
   }
   const std::uint32_t stamp = kept.stamps ? motion.frame : 0;
-  stats.inserted = take_in(tree, motion, scan, before, stats, [&](const std::array<float, 3>& p, std::uint32_t i) {
+  stats.inserted = take_in(tree, motion, scan, clearing, stats, [&](const std::array<float, 3>& p, std::uint32_t i) {
     return StoredPoint{p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
                        kept.times ? float(scan.times[i] - motion.clock.origin) : 0.0f};
   });

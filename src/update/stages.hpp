@@ -1,10 +1,12 @@
 #pragma once
-// The four stages of one update, in the order update.cpp runs them (paper §IV, DESIGN.md §2).
+// The four stages of one update, in the order update.cpp runs them (paper §IV), with free-space
+// clearing's (src/clearing/) between them.
 // Stage 1 answers with the frame's Motion, which the others read; points a stage takes out of the
 // tree to put back (a precision-origin move, a rebuilt subtree) are handed on, not parked.
 
-#include "core/tree.hpp"
+#include "clearing/clearing.hpp"
 #include "core/motion.hpp"
+#include "core/tree.hpp"
 
 #include <eco/types.hpp>
 
@@ -16,11 +18,6 @@ namespace eco::detail {
 
 /// Every stage counts what it does in the frame's `stats`.
 ///
-/// 0. Arrivals' release (clearing.arrivals): the points the last update brought in where the scan
-///    before theirs saw empty space (the rule in include/eco/config.hpp) leave the tree, counted
-///    as cleared: they were held for that one update. Runs before anything else moves them.
-void release_arrivals(Tree& tree, UpdateStats& stats);
-
 /// 1. Ego-motion: the new pose, precision origin and ego box (AABBs stay in the world; only the
 ///    query box moves), and the clock after `scan`'s times. When the precision origin moved (once
 ///    per ~2 km), every held point is re-expressed and handed back in `displaced`; when the time
@@ -40,12 +37,8 @@ Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& worl
 ///    straddle it, and drop points past the age limit. Subtrees wholly inside are not visited.
 void prune_shift_out(Tree& tree, const Motion& motion, UpdateStats& stats);
 
-/// 2b. Free-space clearing (Config::clearing, off by default): takes out of the tree and of
-///    `displaced` the held points the scan sees through (the rule in include/eco/config.hpp).
-///    Returns, with clearing.arrivals, the last update's scan (kept by the tree), against which
-///    stage 4 judges the points it brings in; null otherwise.
-const Tree::KeptImage* clear_free_space(Tree& tree, const Motion& motion, ScanView scan,
-                                        std::vector<StoredPoint>& displaced, UpdateStats& stats);
+/// 2b. Free-space clearing (Config::clearing, off by default; src/clearing/clearing.hpp): the held
+///    points the scan sees through leave, from the tree and from `displaced`.
 
 /// 3. Overlap refinement (R_over): re-centre the root on the sensor. Quantised: re-link the
 ///    lattice-fixed depth-k subtrees under new top levels. Exact: rebuild the subtrees whose bounds
@@ -56,21 +49,21 @@ std::vector<StoredPoint> refine_overlap(Tree& tree, const Motion& motion, std::v
 
 /// 4. Shift-in (R_in): put `displaced` back, then transform the scan points the insert policy
 ///    admits, pass them through the density cap (in scan order) and insert them in batches,
-///    partitioned top-down from the movement-aware start depth rather than the root. The new
-///    points that `before` (if any) saw through are noted to leave at the next update (stage 0).
+///    partitioned top-down from the movement-aware start depth rather than the root. With
+///    `clearing` (null while it is off), the new points the last update's scan saw through are
+///    noted in it to leave at the next update (stage 0).
 void insert_shift_in(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint> displaced,
-                     const Tree::KeptImage* before, UpdateStats& stats);
+                     ClearingState* clearing, UpdateStats& stats);
 /// Stage 4's parts, for the baselines: where insertion starts (the movement-aware start depth
 /// for `motion`), putting `points` back (left empty, capacity kept), and taking in the scan.
 void place_start_table(Tree& tree, const Motion& motion);
 void reinsert(Tree& tree, std::vector<StoredPoint>& points, UpdateStats& stats);
-void insert_scan(Tree& tree, const Motion& motion, ScanView scan, const Tree::KeptImage* before,
-                 UpdateStats& stats);
+void insert_scan(Tree& tree, const Motion& motion, ScanView scan, ClearingState* clearing, UpdateStats& stats);
 
-/// One update (EgoOctree::update): begin_update(), then the four stages, then 5., the memory a
-/// map that shrank holds free given back (Tree::give_back_memory). Returns the frame's
-/// statistics.
-UpdateStats run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
+/// One update (EgoOctree::update): begin_update(), then the four stages (with free-space
+/// clearing's, reading and writing `clearing`, when it is given), then 5., the memory a map that
+/// shrank holds free given back (Tree::give_back_memory). Returns the frame's statistics.
+UpdateStats run_update(Tree& tree, ClearingState* clearing, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
 /// Every update's preamble (ECO's and the baselines'): checks the arguments against the
 /// configuration — throwing std::invalid_argument, the tree unchanged, when they are refused —
 /// and returns the frame's statistics, counting the scan.

@@ -1,8 +1,7 @@
-// The update recipe (EgoOctree::update), stage by stage (paper §IV; DESIGN.md §2).
+// The update recipe (EgoOctree::update), stage by stage (paper §IV).
 
 #include "update/stages.hpp"
 
-#include <eco/ego_octree.hpp>
 
 #include <cmath>
 #include <limits>
@@ -98,15 +97,16 @@ UpdateStats detail::begin_update(const Config& config, const Eigen::Isometry3d& 
   return stats;
 }
 
-UpdateStats detail::run_update(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
+UpdateStats detail::run_update(Tree& tree, ClearingState* clearing, const Eigen::Isometry3d& world_T_sensor,
+                               ScanView scan) {
   UpdateStats stats = begin_update(tree.config(), world_T_sensor, scan);
-  release_arrivals(tree, stats);                                                   // 0. held one update
-  auto [motion, displaced] = advance_ego_motion(tree, world_T_sensor, scan, stats); // 1. pose, box, clock
-  prune_shift_out(tree, motion, stats);                                            // 2. R_out
-  const auto* before = clear_free_space(tree, motion, scan, displaced, stats);     //    seen through
-  displaced = refine_overlap(tree, motion, std::move(displaced), stats);           // 3. R_over
-  insert_shift_in(tree, motion, scan, std::move(displaced), before, stats);        // 4. R_in
-  tree.give_back_memory();                                                         // 5. memory
+  if (clearing) release_arrivals(tree, *clearing, stats);                           // 0. held one update
+  auto [motion, displaced] = advance_ego_motion(tree, world_T_sensor, scan, stats);  // 1. pose, box, clock
+  prune_shift_out(tree, motion, stats);                                             // 2. R_out
+  if (clearing) clear_free_space(tree, *clearing, motion, scan, displaced, stats);  //    seen through
+  displaced = refine_overlap(tree, motion, std::move(displaced), stats);            // 3. R_over
+  insert_shift_in(tree, motion, scan, std::move(displaced), clearing, stats);       // 4. R_in
+  tree.give_back_memory();                                                          // 5. memory
   return stats;
 }
 

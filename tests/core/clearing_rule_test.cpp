@@ -2,7 +2,7 @@
 // margin in double): at random, and at every double around the line where the answer flips; and
 // its screen, may_lie_beyond, never 0 where the rule holds.
 
-#include "update/clearing_rule.hpp"
+#include "clearing/clearing_rule.hpp"
 
 #include <gtest/gtest.h>
 

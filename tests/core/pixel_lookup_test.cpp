@@ -2,9 +2,9 @@
 // exact_pixel_of() for points anywhere, on pixel walls and at every distance from them, on the field
 // of view's edges, straight up and down, beyond the range, and in single precision as scans come.
 
-#include "update/fast_atan2.hpp"
-#include "update/pixel_lookup.hpp"
-#include "update/pixel_stream.hpp"
+#include "clearing/fast_atan2.hpp"
+#include "clearing/pixel_lookup.hpp"
+#include "clearing/pixel_stream.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The range image against the rule written out: each pixel's nearest return around it.
 
-#include "update/range_image.hpp"
+#include "clearing/range_image.hpp"
 
 #include <gtest/gtest.h>
 

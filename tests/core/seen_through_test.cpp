@@ -2,7 +2,7 @@
 // it flags every point the rule sees through and every one tier 1 left undecided, rules out the
 // others save those within rounding of the rule's line, and flags no lane past the group's size.
 
-#include "update/scan_judge.hpp"
+#include "clearing/scan_judge.hpp"
 
 #include <gtest/gtest.h>
 

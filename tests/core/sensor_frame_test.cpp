@@ -1,9 +1,9 @@
-// to_sensor_frame, whose lanes rotate held points in vector code (src/update/sensor_frame.cpp),
+// to_sensor_frame, whose lanes rotate held points in vector code (src/clearing/sensor_frame.cpp),
 // against Eigen's product one point at a time: the same doubles to the bit, for random rotations,
 // offsets near and far from the precision origin, and every group size; and load_returns, which
 // loads a scan's returns (packed, in vector code, or strided), against the floats themselves.
 
-#include "update/sensor_frame.hpp"
+#include "clearing/sensor_frame.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // atan2 in degrees in single precision, with a stated error and without branches, so that the
 // compiler turns a loop of them into vector code: the pixel lookup's first tier computes
 // elevation and azimuth with it and decides only farther than its error from every wall
-// (src/update/pixel_lookup.hpp).
+// (src/clearing/pixel_lookup.hpp).
 
 #include <algorithm>
 #include <cmath>

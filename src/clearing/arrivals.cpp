@@ -1,8 +1,11 @@
-#include "update/arrivals.hpp"
+// Free-space clearing's arrivals (Config::clearing.arrivals): a point that comes in where the
+// scan before its own saw empty space is something that moved in. Insertion judges each new point
+// against that scan (ArrivalCheck); those it sees through are held for one update, then leave the
+// tree (release_arrivals).
 
-#include "update/pixel_stream.hpp"
-#include "update/stages.hpp"
-#include "update/subtree_filter.hpp"
+#include "clearing/clearing.hpp"
+#include "clearing/pixel_stream.hpp"
+#include "core/subtree_filter.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -10,11 +13,16 @@
 
 namespace eco::detail {
 
-ArrivalCheck::ArrivalCheck(Tree& tree, const Motion& motion, const Tree::KeptImage& before)
-    : pixels_(tree.config().sensor, tree.clearing_memory().pixel_tables),
-      judge_{Sight(before.pose, motion.anchor, tree.config().sensor),
-             SeenThrough(RangeImage(pixels_, before.storage), tree.config().clearing.margin)},
-      leaving_(tree.clearing_memory().leaving) {}
+ArrivalCheck::ArrivalCheck(const Config& config, ClearingState& state, const Motion& motion)
+    : pixels_(config.sensor, state.pixel_tables),
+      judge_{Sight(state.before.pose, motion.anchor, config.sensor),
+             SeenThrough(RangeImage(pixels_, state.before.storage), config.clearing.margin)},
+      leaving_(state.leaving) {}
+
+bool judges_arrivals(const Config& config, const ClearingState& state, const Motion& motion) {
+  const bool last_update_seen = state.before.frame != 0 && state.before.frame + 1 == motion.frame;
+  return config.clearing.arrivals && last_update_seen;
+}
 
 template <class Point>
 void ArrivalCheck::operator()(std::span<const Point> batch) {
@@ -98,8 +106,8 @@ class Release {
 
 }  // namespace
 
-void release_arrivals(Tree& tree, UpdateStats& stats) {
-  std::vector<StoredPoint>& leaving = tree.clearing_memory().leaving;
+void release_arrivals(Tree& tree, ClearingState& state, UpdateStats& stats) {
+  std::vector<StoredPoint>& leaving = state.leaving;
   if (leaving.empty()) return;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> at;
   std::vector<std::uint32_t> marked;

@@ -1,8 +1,8 @@
-#include "update/range_image.hpp"
+#include "clearing/range_image.hpp"
 
 #include "core/vector_clones.hpp"
-#include "update/pixel_stream.hpp"
-#include "update/sensor_frame.hpp"
+#include "clearing/pixel_stream.hpp"
+#include "clearing/sensor_frame.hpp"
 
 #include <algorithm>
 #include <array>

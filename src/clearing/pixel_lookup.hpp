@@ -6,7 +6,7 @@
 // 1. Groups of points in vector code (core/vector_clones.hpp: four lanes with SSE2, eight with
 //    AVX2, sixteen with AVX-512, whose clone made the update with clearing 6-8 % faster), in
 //    single precision: elevation and azimuth by a polynomial arctangent
-//    (src/update/fast_atan2.hpp), row and column by truncation, wherever both angles lie farther
+//    (src/clearing/fast_atan2.hpp), row and column by truncation, wherever both angles lie farther
 //    than kAngleGuard from every wall.
 // 2. In double, without arctangents, for the points tier 1 leaves (PixelStream gathers them into
 //    groups of their own) or one point: the elevation replaced by its sine, z / |v|, and

@@ -3,8 +3,8 @@
 // projected into it and cleared when the nearest return around its pixel lies beyond it by more
 // than the margin (the rule in include/eco/config.hpp).
 //
-// With clearing.arrivals, the stage also hands insertion the last update's scan, to judge the
-// points this one brings in (src/update/arrivals.cpp): the tree keeps the last two images.
+// With clearing.arrivals, the state keeps the last update's scan too, against which insertion
+// judges the points this one brings in (src/clearing/arrivals.cpp).
 //
 // Two passes. The first reads the tree: it notes the nodes the sensor may see (look_into), then
 // streams their leaves' points into the pixel lookup in full groups across leaves, rotated into
@@ -12,10 +12,10 @@
 // group at once, and the numbers of the points seen through are kept. The second rewrites only
 // the leaves that lost points, and the nodes above them (plan_clearing, Clearing).
 
-#include "update/pixel_stream.hpp"
-#include "update/scan_judge.hpp"
-#include "update/stages.hpp"
-#include "update/subtree_filter.hpp"
+#include "clearing/clearing.hpp"
+#include "clearing/pixel_stream.hpp"
+#include "clearing/scan_judge.hpp"
+#include "core/subtree_filter.hpp"
 
 #include <algorithm>
 #include <utility>
@@ -165,21 +165,16 @@ void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judge& judg
 
 }  // namespace
 
-const Tree::KeptImage* clear_free_space(Tree& tree, const Motion& motion, ScanView scan,
-                                        std::vector<StoredPoint>& displaced, UpdateStats& stats) {
+void clear_free_space(Tree& tree, ClearingState& state, const Motion& motion, ScanView scan,
+                      std::vector<StoredPoint>& displaced, UpdateStats& stats) {
   const Config& config = tree.config();
-  if (!config.clearing.enabled) return nullptr;
-  Tree::ClearingMemory& memory = tree.clearing_memory();
-  const bool arrivals = config.clearing.arrivals;
-  if (arrivals) std::swap(memory.image, memory.before);  // the last update's image; its old storage is reused
-  memory.image.frame = motion.frame;
-  memory.image.pose = motion.pose;
-  const PixelLookup pixels(config.sensor, memory.pixel_tables);
+  if (config.clearing.arrivals) std::swap(state.image, state.before);  // the last update's image; its old storage is reused
+  state.image.frame = motion.frame;
+  state.image.pose = motion.pose;
+  const PixelLookup pixels(config.sensor, state.pixel_tables);
   const Judge judge{Sight(motion.pose, motion.anchor, config.sensor),
-                    SeenThrough(RangeImage(pixels, scan, memory.image.storage), config.clearing.margin)};
+                    SeenThrough(RangeImage(pixels, scan, state.image.storage), config.clearing.margin)};
   clear_seen_through(tree, pixels, judge, displaced, stats);
-  const bool last_update_seen = memory.before.frame != 0 && memory.before.frame + 1 == motion.frame;
-  return arrivals && last_update_seen ? &memory.before : nullptr;
 }
 
 }  // namespace eco::detail

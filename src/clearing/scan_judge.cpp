@@ -1,4 +1,4 @@
-#include "update/scan_judge.hpp"
+#include "clearing/scan_judge.hpp"
 
 #include "core/set_flags.hpp"
 #include "core/vector_clones.hpp"

@@ -3,7 +3,7 @@
 // free-space clearing, which looks up the pixel of every return and of every held point in view,
 // every frame: held points rotated into it, a scan's returns (already in it) loaded.
 
-#include "update/pixel_lookup.hpp"
+#include "clearing/pixel_lookup.hpp"
 
 #include <Eigen/Core>
 

@@ -4,7 +4,7 @@
 
 #include <eco/types.hpp>
 
-#include "update/pixel_lookup.hpp"
+#include "clearing/pixel_lookup.hpp"
 
 #include <cstdint>
 #include <limits>

@@ -6,7 +6,7 @@
 // points whose pixel and reach the caller has no use for (free-space clearing's judges: most held
 // points are not seen through), so that only the others are handed over one by one.
 
-#include "update/pixel_lookup.hpp"
+#include "clearing/pixel_lookup.hpp"
 
 #include <array>
 #include <bit>

@@ -1,13 +1,13 @@
 #pragma once
 // A scan as free-space clearing's judge of held points (the rule in include/eco/config.hpp): where
-// it was taken from, and its range image. Shared by the clearing stage (src/update/free_space.cpp)
-// and the arrivals' check at insertion (src/update/arrivals.cpp).
+// it was taken from, and its range image. Shared by the clearing stage (src/clearing/free_space.cpp)
+// and the arrivals' check at insertion (src/clearing/arrivals.cpp).
 
 #include "core/geometry.hpp"
-#include "update/clearing_rule.hpp"
-#include "update/pixel_lookup.hpp"
-#include "update/range_image.hpp"
-#include "update/sensor_frame.hpp"
+#include "clearing/clearing_rule.hpp"
+#include "clearing/pixel_lookup.hpp"
+#include "clearing/range_image.hpp"
+#include "clearing/sensor_frame.hpp"
 
 #include <eco/config.hpp>
 

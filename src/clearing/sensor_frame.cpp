@@ -1,4 +1,4 @@
-#include "update/sensor_frame.hpp"
+#include "clearing/sensor_frame.hpp"
 
 #include "core/vector_clones.hpp"
 

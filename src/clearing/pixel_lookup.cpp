@@ -1,11 +1,11 @@
-#include "update/pixel_lookup.hpp"
+#include "clearing/pixel_lookup.hpp"
 
 #include <algorithm>
 #include <limits>
 #include <span>
 
 #include "core/vector_clones.hpp"
-#include "update/fast_atan2.hpp"
+#include "clearing/fast_atan2.hpp"
 
 namespace eco::detail {
 namespace {

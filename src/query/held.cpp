@@ -1,0 +1,52 @@
+// Whole-map reads: every held point, and the tree's statistics.
+
+#include "query/frames.hpp"
+#include "query/queries.hpp"
+
+#include <algorithm>
+
+namespace eco::detail {
+
+void for_each_held(const Tree& t, const std::function<void(const Eigen::Vector3d&)>& visit) {
+  if (t.root() == kNone) return;
+  walk_leaves(
+      t, t.root(), [](const Aabb&) { return 2; }, [&](const StoredPoint& s, bool) { visit(t.to_world(s.p)); });
+}
+
+std::vector<HeldPoint> held_points(const Tree& t) {
+  std::vector<HeldPoint> out;
+  out.reserve(t.size());
+  if (t.root() == kNone) return out;
+  walk_leaves(
+      t, t.root(), [](const Aabb&) { return 2; },
+      [&](const StoredPoint& s, bool) { out.push_back({t.to_world(s.p), attributes_of(t, s)}); });
+  return out;
+}
+
+Stats tree_stats(const Tree& t) {
+  Stats s;
+  s.points = t.size();
+  s.nodes = t.nodes().live();
+  s.bytes = t.bytes();
+  if (t.root() == kNone) return s;
+  double depth_sum = 0.0;
+  auto walk = [&](auto&& self, std::uint32_t id) -> void {
+    const Node& n = t.nodes()[id];
+    if (n.leaf) {
+      if (n.count == 0) return;
+      ++s.leaves;
+      depth_sum += n.depth;
+      s.max_leaf_depth = std::max(s.max_leaf_depth, int(n.depth));
+      return;
+    }
+    for (int o = 0; o < 8; ++o) {
+      const std::uint32_t ch = t.nodes().child(id, o);
+      if (ch != kNone) self(self, ch);
+    }
+  };
+  walk(walk, t.root());
+  s.mean_leaf_depth = s.leaves ? depth_sum / double(s.leaves) : 0.0;
+  return s;
+}
+
+}  // namespace eco::detail
