@@ -87,7 +87,11 @@ void Config::validate() const {
     if (cell > box_side) reject("density_cap.cell_size", cell, "must not exceed box_side");
     // held points span at most box_side / cell + 2 cells per axis: CellCounts names them mod 2^18
     if (box_side / cell > double((1u << 18) - 2u)) {
-      reject("density_cap.cell_size", cell, "must be at least box_side / 262142 (the cell counts' reach)");
+      std::ostringstream why;
+      why << "conflicts with box_side = " << box_side << " m: the cell counts reach 262142 cells along the box, so "
+          << "the cell size must be at least box_side / 262142 = " << box_side / double((1u << 18) - 2u)
+          << " m (or the box at most 262142 * cell_size = " << cell * double((1u << 18) - 2u) << " m)";
+      reject("density_cap.cell_size", cell, why.str());
     }
   }
 }

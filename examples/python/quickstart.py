@@ -3,10 +3,11 @@
 nearest neighbours, and plot what each update cost.
 
     make python                                      # once: builds and installs the package `eco`
-    /usr/bin/python3 examples/python/quickstart.py   # writes eco_quickstart.png
+    /usr/bin/python3 examples/python/quickstart.py   # writes results/eco_quickstart.png
 """
 
 import argparse
+import os
 import time
 
 import matplotlib
@@ -21,7 +22,7 @@ import eco  # noqa: E402
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--frames", type=int, default=100, help="frames to simulate (default 100)")
-    parser.add_argument("--out", default="eco_quickstart.png", help="the plot to write")
+    parser.add_argument("--out", default="results/eco_quickstart.png", help="the plot to write (its folder is made)")
     args = parser.parse_args()
 
     # A 20 m cube around the sensor; raw scans, so insert everything in the box, at most two
@@ -69,6 +70,7 @@ def main():
     top.set_title("held points at the last frame (top view, colour = height)")
     top.legend(loc="upper right")
     figure.tight_layout()
+    os.makedirs(os.path.dirname(args.out) or ".", exist_ok=True)
     figure.savefig(args.out, dpi=110)
     print(f"plot: {args.out}")
 

@@ -75,10 +75,11 @@ UpdateStats update_with(SharedTree& self, const char* pose_name, const Eigen::Is
   }
 }
 
+/// k >= 1: one rule and one message for every value below (0, -1, ...), as the C++ tools say it.
 std::size_t k_arg(const py::object& k) {
-  const auto value = integer_arg<std::size_t>(k, "k");
-  if (value == 0) throw py::value_error("k must be >= 1");
-  return value;
+  const auto value = integer_arg<long long>(k, "k");
+  if (value < 1) throw py::value_error("k = " + std::to_string(value) + " must be >= 1");
+  return std::size_t(value);
 }
 
 /// Threads for a batch query: workers >= 1, or -1 for one per core (as scipy's `workers`).

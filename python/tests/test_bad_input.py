@@ -117,8 +117,8 @@ def test_bad_queries(tree):
 
 
 @pytest.mark.parametrize("k, error, words", [
-    (0, ValueError, ["k must be >= 1"]),
-    (-2, ValueError, ["k = -2", ">= 0"]),
+    (0, ValueError, ["k = 0 must be >= 1"]),
+    (-2, ValueError, ["k = -2 must be >= 1"]),
     (2.5, TypeError, ["k must be an integer", "float"]),
     ("3", TypeError, ["k must be an integer", "str"]),
     (True, TypeError, ["k must be an integer", "bool"]),

@@ -58,7 +58,7 @@ json bench_options_json(const BenchOptions& o) {
               {"seed", o.seed},
               {"sim-frames", o.sim_frames},
               {"check", o.check_every_frame}};
-  if (o.data) out["data"] = o.data->string();
+  if (o.data) out["data"] = std::filesystem::weakly_canonical(*o.data).string();  // --config works from anywhere
   return out;
 }
 

@@ -33,6 +33,7 @@ BenchRun run_bench(const BenchOptions& given, const Progress& progress) {
   const auto started = Clock::now();
   BenchOptions options = given;
   options.config.validate();
+  if (options.knn_k == 0) throw std::invalid_argument("k = 0 must be >= 1");  // KNN of no neighbour measures nothing
   const std::string reference = chamfer_reference(options.workload);
   if (options.workload == WorkloadKind::Dynamic &&
       std::find(options.methods.begin(), options.methods.end(), reference) == options.methods.end()) {

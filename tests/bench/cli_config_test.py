@@ -91,9 +91,13 @@ check("invariants: all hold" in ran, ran)
 eco("run", "--config", "A/config.json", "--data", "sim", "--frames", "2", "--out", "R")
 cr = load("R/config.json")
 check(cr["config"] == ca["config"], f"run's config {cr['config']} is not the bench's {ca['config']}")
-check(cr["run"]["frames"] == 2 and cr["run"]["data"] == "sim", cr["run"])
+check(cr["run"]["frames"] == 2 and cr["run"]["data"] == os.path.realpath(os.path.join(WORK, "sim")), cr["run"])
 eco("run", "--config", "R/config.json", "--out", "R2")
 check(load("R2/config.json")["run"] == cr["run"], "run --config lost an option")
+# the data folder is stored resolved: the file works from another folder too
+elsewhere = subprocess.run([CLI, "run", "--config", "config.json", "--out", "R3"], capture_output=True, text=True,
+                           cwd=os.path.join(WORK, "R"))
+check(elsewhere.returncode == 0, f"run --config from the file's own folder failed:\n{elsewhere.stderr}")
 
 # bad files and bad flags: refused, naming the file, the key and the value
 bad = {
@@ -114,6 +118,8 @@ for name, (content, words) in bad.items():
 with open(os.path.join(WORK, "not_json.json"), "w") as f:
     f.write("{box_side: 3")
 check("not_json.json" in eco("run", "--config", "not_json.json", ok=False).stderr, "a broken file not named")
+message = eco("bench", "--k", "0", "--out", "X", ok=False).stderr
+check("k = 0 must be >= 1" in message, message)
 message = eco("bench", "--leaf_capacity", "0", "--out", "X", ok=False).stderr
 check("leaf_capacity" in message and "0" in message, message)
 check(not os.path.exists(os.path.join(WORK, "X")), "a refused run wrote results")

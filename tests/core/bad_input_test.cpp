@@ -50,6 +50,13 @@ TEST(BadConfig, EachInvalidFieldIsRejectedByName) {
                   {"density_cap.cell_size", "30", "box_side"});
   expect_rejected([&] { EgoOctree t(with([](Config& c) { c.density_cap = {1e-5, 2}; })); },
                   {"density_cap.cell_size", "1e-05"});
+  // a box too large for the cap's cells names both values, whichever of them the user gave
+  expect_rejected([&] {
+    EgoOctree t(with([](Config& c) {
+      c.box_side = 1e5;
+      c.density_cap = {0.1, 2};
+    }));
+  }, {"density_cap.cell_size = 0.1", "box_side = 100000", "conflict"});
   expect_rejected([&] { EgoOctree t(with([](Config& c) { c.density_cap = {0.1, 5000}; })); },
                   {"density_cap.max_points", "5000"});
   // Exact mode has no quantum: a coarse min cell is fine there.

@@ -24,10 +24,9 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
   CLI::App* cmd = app.add_subcommand("bench", "Compare ECO with its baselines on one stream (the paper's Table II)");
   cmd->add_option("--data", *data, "KITTI-layout folder (velodyne/, poses.txt[, calib.txt]); default: simulate")
       ->check(CLI::ExistingDirectory);
-  const std::map<std::string, bench::WorkloadKind> kinds{{"static", bench::WorkloadKind::Static},
-                                                         {"dynamic", bench::WorkloadKind::Dynamic}};
-  cmd->add_option("--workload", o->workload, "static (aggregated map) or dynamic (raw scans)")
-      ->transform(CLI::CheckedTransformer(kinds, CLI::ignore_case))
+  auto workload = std::make_shared<std::string>(bench::to_string(o->workload));
+  cmd->add_option("--workload", *workload, "static (aggregated map) or dynamic (raw scans)")
+      ->check(CLI::IsMember({"static", "dynamic"}, CLI::ignore_case))
       ->capture_default_str();
   std::string known;
   for (const std::string& n : baselines::method_names()) known += (known.empty() ? "" : ",") + n;
@@ -62,17 +61,22 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
       "  eco bench --workload dynamic --methods eco,nanoflann --knn-queries 5000 --k 10\n"
       "  eco bench --data ../shared/data/kitti_mini_08 --preset robot-cap-0.2 --out results/kitti08-robot-cap\n"
       "  eco bench --config results/kitti08-robot-cap/config.json --out results/again");
-  return [o, data, preset, cmd, flags, file, command_line] {
+  return [o, data, workload, preset, cmd, flags, file, command_line] {
     file->load();  // a config.json's values, for the options not given here
     // the preset first; every option given (on the command line or in the file) then overrides it
     const bench::BenchOptions given = *o;
     bench::apply_preset(*preset, *o);
-    if (cmd->count("--workload") > 0) o->workload = given.workload;
+    if (cmd->count("--workload") > 0) {
+      const bool dynamic = CLI::detail::to_lower(*workload) == "dynamic";
+      o->workload = dynamic ? bench::WorkloadKind::Dynamic : bench::WorkloadKind::Static;
+    }
     if (cmd->count("--voxel") > 0) o->voxel_resolution = given.voxel_resolution;
     // the lattice (and PCL's leaves) at the voxel size every method is asked at, unless given
     if (cmd->count("--voxel_size") == 0) o->config.voxel_size = o->voxel_resolution;
     flags->apply(o->config);
     if (!data->empty()) o->data = *data;
+    std::printf("preset %s: %s, %s workload, voxel map at %g m\n", preset->c_str(), describe_settings(o->config).c_str(),
+                bench::to_string(o->workload).c_str(), o->voxel_resolution);
     bench::pin_to_one_core();
     const bench::BenchRun run = bench::run_bench(*o, bench::terminal_progress());
     bench::write_results(o->out, run, command_line);

@@ -7,10 +7,26 @@
 
 #include <CLI/CLI.hpp>
 
+#include <sstream>
 #include <string>
 #include <vector>
 
 namespace eco::cli {
+
+/// The settings a command runs with, in one line, for the start of its output.
+inline std::string describe_settings(const Config& c) {
+  std::ostringstream s;
+  s << "L = " << c.box_side << " m, N_max = " << c.leaf_capacity << ", "
+    << (c.insert_policy == InsertPolicy::AllInBox ? "AllInBox" : "ShiftInOnly") << ", "
+    << (c.recentring == Recentring::Exact ? "exact" : "quantised") << " re-centring, density cap ";
+  if (c.density_cap.enabled()) {
+    s << c.density_cap.max_points << " per " << c.density_cap.cell_size << " m cell";
+  } else {
+    s << "off";
+  }
+  s << ", free-space clearing " << (!c.clearing.enabled ? "off" : c.clearing.arrivals ? "on, with arrivals" : "on");
+  return s.str();
+}
 
 class ConfigFlags {
  public:

@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
       "  eco bench --workload static --frames 100 --out results/static\n"
       "                                                        all methods on the simulator's default drive\n"
       "  eco bench --data data/sim --workload dynamic --methods eco,octree_base,nanoflann --out results/dyn\n"
-      "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out run00\n"
+      "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out results/run00\n"
       "Run 'eco <command> --help' for each command's options.");
   const eco::cli::Run simulate = eco::cli::add_simulate(app, command_line);
   const eco::cli::Run bench = eco::cli::add_bench(app, command_line);

@@ -24,7 +24,7 @@ namespace {
 
 struct RunOptions {
   std::string data;
-  std::string out = "eco-run";
+  std::string out = "results/run";
   std::size_t frames = 0;
   std::size_t export_every = 0;
   double voxel = 0.1;
@@ -125,9 +125,8 @@ int run(const RunOptions& o) {
   const Config& config = o.config;
   EgoOctree tree(config);
   const std::size_t total = o.frames > 0 ? std::min(o.frames, scans->size()) : scans->size();
-  std::printf("%s, %zu frames, L = %.1f m, N_max = %u, %s re-centring, free-space clearing %s\n",
-              o.data.empty() ? "simulated drive" : o.data.c_str(), total, config.box_side, config.leaf_capacity,
-              config.recentring == Recentring::Exact ? "exact" : "quantised", !config.clearing.enabled ? "off" : config.clearing.arrivals ? "on, with arrivals" : "on");
+  std::printf("%s, %zu frames; %s\n", o.data.empty() ? "simulated drive" : o.data.c_str(), total,
+              describe_settings(config).c_str());
   std::printf("%6s %8s %8s %8s %8s %9s %8s %6s %6s %9s %7s\n", "frame", "scan", "inserted", "pruned", "cleared",
               "held", "nodes", "depth", "B/pt", "update ms", "trail");
   std::unique_ptr<TrailReport> trails;
@@ -158,7 +157,7 @@ int run(const RunOptions& o) {
 /// The options of a run keyed by `eco run`'s flags (without --out and --config).
 nlohmann::json run_options_json(const RunOptions& o) {
   nlohmann::json out{{"frames", o.frames}, {"export-every", o.export_every}, {"voxel", o.voxel}, {"seed", o.seed}};
-  if (!o.data.empty()) out["data"] = o.data;
+  if (!o.data.empty()) out["data"] = std::filesystem::weakly_canonical(o.data).string();  // --config works from anywhere
   return out;
 }
 
@@ -183,9 +182,9 @@ Run add_run(CLI::App& app, const std::string& command_line) {
       "The output folder gets config.json (feed it back with --config to repeat the run).\n"
       "Examples:\n"
       "  eco run --frames 50\n"
-      "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out run00\n"
+      "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out results/run00\n"
       "  eco run --data ../shared/data/kitti_mini_00 --recentring Exact --density_cap.max_points 0\n"
-      "  eco run --data ../shared/data/kitti_mini_08 --clearing.enabled true");
+      "  eco run --frames 60 --clearing.enabled true     the simulator's cars: their trails, cleared or kept");
   return [o, flags, file, command_line] {
     file->load();
     flags->apply(o->config);
