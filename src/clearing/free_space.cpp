@@ -54,10 +54,7 @@ std::uint32_t look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, c
   visits.push_back({id, parent, 0, first, 0, 0, nullptr});
   t.nodes().prefetch_children(id);  // their misses overlap
   std::uint32_t points = 0;
-  for (int o = 0; o < 8; ++o) {
-    const std::uint32_t child = t.nodes().child(id, o);
-    if (child != kNone) points += look_into(t, child, here, sight, visits, first + points);
-  }
+  t.nodes().for_each_child(id, [&](int, std::uint32_t child) { points += look_into(t, child, here, sight, visits, first + points); });
   return points;
 }
 

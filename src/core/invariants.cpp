@@ -53,9 +53,7 @@ class Checker {
       if (t_.config().recentring == Recentring::Quantised && subcells != n.subcells()) fail(id, "occupied subcells wrong");
     } else {
       bool any = false;
-      for (int o = 0; o < 8; ++o) {
-        const std::uint32_t ch = t_.nodes().child(id, o);
-        if (ch == detail::kNone) continue;
+      t_.nodes().for_each_child(id, [&](int o, std::uint32_t ch) {
         any = true;
         const detail::Node& c = t_.nodes()[ch];
         if (c.parent != id || c.octant != o) fail(ch, "parent link broken");
@@ -63,7 +61,7 @@ class Checker {
         count += c.count;
         bounds.merge(c.bounds);
         oldest = std::min(oldest, c.oldest);
-      }
+      });
       if (!any && id != t_.root()) fail(id, "inner node without children");
       if (n.depth >= t_.min_leaf_depth() && n.count <= t_.config().leaf_capacity && id != t_.root()) {
         fail(id, "inner node small enough to be a leaf");

@@ -85,6 +85,15 @@ class NodeStore {
   void prefetch(std::uint32_t id) const { __builtin_prefetch(&nodes_[id]); }
   /// Asks the memory system for the children of inner node `id` ahead of a visit, so that
   /// their cache misses overlap instead of coming one after another.
+  /// Calls f(octant, child) for each child of inner node `id`, in octant order. The block is
+  /// read again for each child, so `f` may change the tree (create, release or unlink nodes).
+  template <class F>
+  void for_each_child(std::uint32_t id, F&& f) const {
+    for (int o = 0; o < 8; ++o) {
+      const std::uint32_t ch = child(id, o);
+      if (ch != kNone) f(o, ch);
+    }
+  }
   void prefetch_children(std::uint32_t id) const {
     for (const std::uint32_t ch : blocks_[nodes_[id].link].child) {
       if (ch != kNone) __builtin_prefetch(&nodes_[ch]);

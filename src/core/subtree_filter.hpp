@@ -31,13 +31,11 @@ Filtered filter_subtree(Tree& t, std::uint32_t id, Filter& filter) {
     if (!filter.filter_leaf(id)) return Filtered::Unchanged;
   } else {
     bool changed = false;
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = t.nodes().child(id, o);
-      if (ch == kNone) continue;
+    t.nodes().for_each_child(id, [&](int o, std::uint32_t ch) {
       const Filtered below = filter_subtree(t, ch, filter);
       if (below == Filtered::Gone) t.unlink_child(id, o);
       changed = changed || below != Filtered::Unchanged;
-    }
+    });
     if (!changed) return Filtered::Unchanged;
     t.refit(id);
     if (t.nodes()[id].count > 0 && t.should_collapse(id)) t.collapse(id);

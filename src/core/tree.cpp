@@ -77,10 +77,7 @@ void Tree::shift_times(double shift) {
     if (n.leaf) {
       points_.shift_times(n.link, n.count, shift);
     } else {
-      for (int o = 0; o < 8; ++o) {
-        const std::uint32_t ch = nodes_.child(id, o);
-        if (ch != kNone) self(self, ch);
-      }
+      nodes_.for_each_child(id, [&](int, std::uint32_t ch) { self(self, ch); });
     }
     if (keyed) refit(id);
   };
@@ -111,10 +108,7 @@ const MappedVector<std::pair<std::uint32_t, Cell>>& Tree::detach_subtrees(int de
       subtrees.emplace_back(id, cell);
       return;
     }
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = nodes_.child(id, o);
-      if (ch != kNone) self(self, ch, lattice_.child(cell, o));
-    }
+    nodes_.for_each_child(id, [&](int o, std::uint32_t ch) { self(self, ch, lattice_.child(cell, o)); });
     nodes_.release(id);
   };
   if (root_ != kNone) collect(collect, root_, root_cell_);
@@ -139,10 +133,7 @@ void Tree::attach_subtree(std::uint32_t id, const Cell& cell) {
 void Tree::refit_above(int depth) {
   auto walk = [&](auto&& self, std::uint32_t id) -> void {
     if (nodes_[id].depth >= depth) return;
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = nodes_.child(id, o);
-      if (ch != kNone) self(self, ch);
-    }
+    nodes_.for_each_child(id, [&](int, std::uint32_t ch) { self(self, ch); });
     refit(id);
   };
   if (root_ != kNone) walk(walk, root_);
@@ -153,10 +144,7 @@ void Tree::grow_root(int octant) {
   auto deepen = [&](auto&& self, std::uint32_t id) -> void {  // depths count from the root
     ++nodes_[id].depth;
     if (nodes_[id].leaf) return;
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = nodes_.child(id, o);
-      if (ch != kNone) self(self, ch);
-    }
+    nodes_.for_each_child(id, [&](int, std::uint32_t ch) { self(self, ch); });
   };
   deepen(deepen, root_);
   ++lattice_.max_depth;
@@ -390,12 +378,9 @@ void Tree::split(std::uint32_t id, const Cell& cell, const std::array<std::uint3
     fit_leaf(child, keeps_subcells_ ? Subcells(lattice_, lattice_.child(cell, o)) : Subcells());
   }
   points_.release(block);
-  for (int o = 0; o < 8; ++o) {
-    const std::uint32_t ch = nodes_.child(id, o);
-    if (ch != kNone && nodes_[ch].count > cfg_.leaf_capacity && cell.depth + 1 < lattice_.max_depth) {
-      split(ch, lattice_.child(cell, o));
-    }
-  }
+  nodes_.for_each_child(id, [&](int o, std::uint32_t ch) {
+    if (nodes_[ch].count > cfg_.leaf_capacity && cell.depth + 1 < lattice_.max_depth) split(ch, lattice_.child(cell, o));
+  });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -414,13 +399,11 @@ void Tree::refit(std::uint32_t id) {
   std::uint32_t oldest = kNone;
   {
     std::uint32_t count = 0;
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = nodes_.child(id, o);
-      if (ch == kNone) continue;
+    nodes_.for_each_child(id, [&](int, std::uint32_t ch) {
       count += nodes_[ch].count;
       bounds.merge(nodes_[ch].bounds);
       oldest = std::min(oldest, nodes_[ch].oldest);
-    }
+    });
     nodes_[id].count = count;
   }
   nodes_[id].bounds = bounds;
@@ -457,10 +440,7 @@ void Tree::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
       points_.release(n.link);
     }
   } else {
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = nodes_.child(id, o);
-      if (ch != kNone) dissolve(ch, out);
-    }
+    nodes_.for_each_child(id, [&](int, std::uint32_t ch) { dissolve(ch, out); });
   }
   nodes_.release(id);
 }
@@ -492,10 +472,7 @@ bool Tree::should_collapse(std::uint32_t id) const {
 void Tree::collapse(std::uint32_t id) {
   std::vector<StoredPoint>& scratch = buffers_.collapsed();
   const std::size_t base = scratch.size();
-  for (int o = 0; o < 8; ++o) {
-    const std::uint32_t ch = nodes_.child(id, o);
-    if (ch != kNone) dissolve(ch, &scratch);
-  }
+  nodes_.for_each_child(id, [&](int, std::uint32_t ch) { dissolve(ch, &scratch); });
   nodes_.make_leaf_of_inner(id);
   Node& n = nodes_[id];
   n.count = 0;
@@ -545,10 +522,7 @@ void Tree::rebuild_start_table(int depth) {
       return;
     }
     if (nodes_[id].leaf) return;
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = nodes_.child(id, o);
-      if (ch != kNone) self(self, ch, lattice_.child(cell, o));
-    }
+    nodes_.for_each_child(id, [&](int o, std::uint32_t ch) { self(self, ch, lattice_.child(cell, o)); });
   };
   walk(walk, root_, root_cell_);
 }

@@ -99,10 +99,7 @@ class Tree {
       points_.for_each(n.link, n.count, f);
       return;
     }
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = nodes_.child(id, o);
-      if (ch != kNone) walk_points(ch, f);
-    }
+    nodes_.for_each_child(id, [&](int, std::uint32_t ch) { walk_points(ch, f); });
   }
 
   // --- the frame --------------------------------------------------------------------------------

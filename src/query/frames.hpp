@@ -68,10 +68,7 @@ void walk_leaves(const Tree& t, std::uint32_t id, Keep&& keep, Visit&& visit, bo
     t.points().for_each(n.link, n.count, [&](const StoredPoint& s) { visit(s, whole); });
     return;
   }
-  for (int o = 0; o < 8; ++o) {
-    const std::uint32_t ch = t.nodes().child(id, o);
-    if (ch != kNone) walk_leaves(t, ch, keep, visit, whole);
-  }
+  t.nodes().for_each_child(id, [&](int, std::uint32_t ch) { walk_leaves(t, ch, keep, visit, whole); });
 }
 
 }  // namespace eco::detail

@@ -39,10 +39,7 @@ Stats tree_stats(const Tree& t) {
       s.max_leaf_depth = std::max(s.max_leaf_depth, int(n.depth));
       return;
     }
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = t.nodes().child(id, o);
-      if (ch != kNone) self(self, ch);
-    }
+    t.nodes().for_each_child(id, [&](int, std::uint32_t ch) { self(self, ch); });
   };
   walk(walk, t.root());
   s.mean_leaf_depth = s.leaves ? depth_sum / double(s.leaves) : 0.0;

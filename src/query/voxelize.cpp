@@ -85,16 +85,11 @@ class LatticeVoxels {
       return;
     }
     if (cell.depth + 1 == depth_) {  // the children are one voxel each, and none is empty (check_tree)
-      for (int o = 0; o < 8; ++o) {
-        if (t_.nodes().child(id, o) != kNone) out_.push_back(voxel_of(t_.lattice().child(cell, o)));
-      }
+      t_.nodes().for_each_child(id, [&](int o, std::uint32_t) { out_.push_back(voxel_of(t_.lattice().child(cell, o))); });
       return;
     }
     t_.nodes().prefetch_children(id);
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t ch = t_.nodes().child(id, o);
-      if (ch != kNone) collect(ch, t_.lattice().child(cell, o));
-    }
+    t_.nodes().for_each_child(id, [&](int o, std::uint32_t ch) { collect(ch, t_.lattice().child(cell, o)); });
   }
 
  private:

@@ -51,9 +51,7 @@ void refit_exact(Tree& t, std::uint32_t id, const Cell& cell, std::vector<Stored
                  UpdateStats& stats) {
   const NodeStore& nodes = t.nodes();
   if (nodes[id].leaf) return;
-  for (int o = 0; o < 8; ++o) {
-    const std::uint32_t ch = nodes.child(id, o);
-    if (ch == kNone) continue;
+  nodes.for_each_child(id, [&](int o, std::uint32_t ch) {
     const Cell child_cell = t.lattice().child(cell, o);
     if (t.lattice().contains(child_cell, nodes[ch].bounds)) {
       refit_exact(t, ch, child_cell, displaced, stats);
@@ -68,7 +66,7 @@ void refit_exact(Tree& t, std::uint32_t id, const Cell& cell, std::vector<Stored
       t.unlink_child(id, o);
       ++stats.rebuilt_subtrees;
     }
-  }
+  });
   t.refit(id);
   if (t.should_collapse(id)) t.collapse(id);
 }
