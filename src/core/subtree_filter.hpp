@@ -38,7 +38,7 @@ Filtered filter_subtree(Tree& t, std::uint32_t id, Filter& filter) {
     });
     if (!changed) return Filtered::Unchanged;
     t.refit(id);
-    if (t.nodes()[id].count > 0 && t.should_collapse(id)) t.collapse(id);
+    if (t.nodes()[id].count > 0) t.collapse_if_small(id);
   }
   if (t.nodes()[id].count == 0 && id != t.root()) {
     t.dissolve(id, nullptr);

@@ -42,17 +42,10 @@ void Tree::set_motion(const Motion& m) {
   density_grid_ = ego_grid(m, cfg_.density_cap.cell_size);
 }
 
-bool Tree::keeps(const StoredPoint& s, const Box& box, UpdateStats& stats) {
-  if (!box.contains(s.p[0], s.p[1], s.p[2])) {
-    ++stats.pruned;
-    forget(s);
-    return false;
-  }
-  if (age_key(s) < age_cutoff()) {
-    ++stats.aged_out;
-    forget(s);
-    return false;
-  }
+bool Tree::let_go_unless_stays(const StoredPoint& s, const Box& box, UpdateStats& stats) {
+  if (stays(s, box)) return false;
+  ++(box.contains(s.p[0], s.p[1], s.p[2]) ? stats.aged_out : stats.pruned);
+  forget(s);
   return true;
 }
 
@@ -128,6 +121,21 @@ void Tree::attach_subtree(std::uint32_t id, const Cell& cell) {
   nodes_.child(parent, o) = id;
   nodes_[id].parent = parent;
   nodes_[id].octant = static_cast<std::uint8_t>(o);
+}
+
+void Tree::relink_top(const Cell& new_root, int depth, std::vector<StoredPoint>& displaced, UpdateStats& stats) {
+  const auto& subtrees = detach_subtrees(depth);
+  place_root(new_root, lattice_);
+  for (const auto& [id, cell] : subtrees) {
+    if (lattice_.encloses(new_root, cell)) {
+      attach_subtree(id, cell);
+      ++stats.relinked_subtrees;
+    } else {  // cannot hold points after shift-out; dissolved for safety all the same
+      dissolve(id, &displaced);
+      ++stats.rebuilt_subtrees;
+    }
+  }
+  refit_above(depth);
 }
 
 void Tree::refit_above(int depth) {
@@ -456,12 +464,18 @@ void Tree::drop(std::uint32_t id, UpdateStats& stats) {
 
 void Tree::filter_leaf(std::uint32_t id, const Box& box, UpdateStats& stats) {
   Node& n = nodes_[id];
-  n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) { return keeps(s, box, stats); });
+  n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) { return !let_go_unless_stays(s, box, stats); });
   refit(id);
 }
 
 void Tree::take_points(std::vector<StoredPoint>& out) {
   if (root_ != kNone) dissolve(root_, &out);
+}
+
+bool Tree::collapse_if_small(std::uint32_t id) {
+  if (!should_collapse(id)) return false;
+  collapse(id);
+  return true;
 }
 
 bool Tree::should_collapse(std::uint32_t id) const {

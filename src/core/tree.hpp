@@ -105,9 +105,13 @@ class Tree {
   // --- the frame --------------------------------------------------------------------------------
   /// Enters a new frame (stage 1): its motion, and the density grid seen from its anchor.
   void set_motion(const Motion& m);
-  /// Whether point `s` may stay: inside `box` and within the age limit. A point that may not
-  /// is counted in `stats` (pruned before aged) and taken out of the density counts.
-  bool keeps(const StoredPoint& s, const Box& box, UpdateStats& stats);
+  /// Whether point `s` stays under `box` and the age limit (a pure test).
+  [[nodiscard]] bool stays(const StoredPoint& s, const Box& box) const {
+    return box.contains(s.p[0], s.p[1], s.p[2]) && age_key(s) >= age_cutoff();
+  }
+  /// Lets point `s` go when it does not stay: counts it in `stats` (pruned when outside `box`,
+  /// else aged out) and takes it out of the density counts. Returns whether it went.
+  bool let_go_unless_stays(const StoredPoint& s, const Box& box, UpdateStats& stats);
   /// Counts the density cells of `held` anew (after the precision origin moved, their keys did).
   void recount_density(const std::vector<StoredPoint>& held);
 
@@ -169,7 +173,8 @@ class Tree {
   void shift_times(double shift);
   /// Releases the subtree at `id` whose points leave the tree (counted as pruned).
   void drop(std::uint32_t id, UpdateStats& stats);
-  /// Keeps the points of leaf `id` that keeps() keeps, and refits it.
+  /// Keeps the points of leaf `id` that stay (fate_of), and refits it; the others are counted and
+  /// leave the density counts.
   void filter_leaf(std::uint32_t id, const Box& box, UpdateStats& stats);
   /// Keeps the points of leaf `id` for which keep(const StoredPoint&) is true, and refits it; the
   /// others leave the density counts.
@@ -195,13 +200,9 @@ class Tree {
   void unlink_child(std::uint32_t id, int octant) { nodes_.child(id, octant) = kNone; }
   /// Recomputes count, bounds and oldest stamp of `id` from its points or children.
   void refit(std::uint32_t id);
-  /// Recomputes bounds, oldest stamp and (Quantised mode) subcells of leaf `id` from its points,
-  /// `quarters` being its cell's.
-  void fit_leaf(std::uint32_t id, const Subcells& quarters);
-  /// Whether `id` (inner) holds so few points that it should be one leaf.
-  [[nodiscard]] bool should_collapse(std::uint32_t id) const;
-  /// Turns inner node `id` into one leaf holding all the points below it.
-  void collapse(std::uint32_t id);
+  /// Turns inner node `id` into one leaf holding all the points below it when they are so few that
+  /// it should be one (at most N_max, below the lattice's fixed levels); returns whether it did.
+  bool collapse_if_small(std::uint32_t id);
   /// Appends every held point to `out` and leaves the tree without a root; the density counts
   /// stay (the points are meant to come back).
   void take_points(std::vector<StoredPoint>& out);
@@ -212,20 +213,28 @@ class Tree {
   void place_root(const Cell& cell, const Lattice& lattice);
   /// Moves the lattice's walls (Exact re-centring); the nodes keep their cells' indices.
   void move_lattice(const Lattice& lattice) { lattice_ = lattice; }
-  /// Quantised re-centring, first half: releases the nodes above `depth` and hands back the
-  /// subtrees at `depth` with their cells; the tree is left without a root.
-  /// The list lives in the working buffers until the next call.
-  const MappedVector<std::pair<std::uint32_t, Cell>>& detach_subtrees(int depth);
-  /// Links subtree `id` (cell `cell`, below the root) under the root, creating the inner nodes
-  /// on its way; refit_above() then fixes their counts and bounds.
-  void attach_subtree(std::uint32_t id, const Cell& cell);
-  /// Refits every node above `depth`, bottom up.
-  void refit_above(int depth);
+  /// Quantised re-centring: the root moves to `new_root` (under the same lattice); the subtrees at
+  /// depth `depth` (the lattice-fixed cells) are re-linked under new top levels, counted in
+  /// `stats` as relinked; one that `new_root` does not enclose (it can hold no point after
+  /// shift-out) is dissolved into `displaced`, counted as rebuilt.
+  void relink_top(const Cell& new_root, int depth, std::vector<StoredPoint>& displaced, UpdateStats& stats);
   /// Doubles the root's cell: a new root whose child `octant` is the old root (i-Octree's growth
   /// toward points outside). Every depth moves one down and the lattice gains a level.
   void grow_root(int octant);
 
  private:
+  /// Recomputes bounds, oldest stamp and (Quantised mode) subcells of leaf `id` from its points,
+  /// `quarters` being its cell's.
+  void fit_leaf(std::uint32_t id, const Subcells& quarters);
+  [[nodiscard]] bool should_collapse(std::uint32_t id) const;
+  /// Turns inner node `id` into one leaf holding all the points below it.
+  void collapse(std::uint32_t id);
+  /// relink_top's parts: releases the nodes above `depth` and lists the subtrees at `depth` with
+  /// their cells (the tree is left without a root); links one under the root, creating the inner
+  /// nodes on its way; refits every node above `depth`, bottom up.
+  const MappedVector<std::pair<std::uint32_t, Cell>>& detach_subtrees(int depth);
+  void attach_subtree(std::uint32_t id, const Cell& cell);
+  void refit_above(int depth);
   /// The density-cap cell of stored point p, as CellCounts names it.
   [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
     return CellCounts::key(density_grid_.index(p));

@@ -18,7 +18,7 @@ std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion, UpdateStats& s
   tree.take_points(held);
   const Eigen::Vector3d shift = *motion.origin_shift;  // exact: multiples of kOriginStep
   for (StoredPoint& s : held) s.p = rebased(s.p, shift);
-  std::erase_if(held, [&](const StoredPoint& s) { return !tree.keeps(s, motion.box, stats); });
+  std::erase_if(held, [&](const StoredPoint& s) { return tree.let_go_unless_stays(s, motion.box, stats); });
   tree.recount_density(held);  // every cell key moved with the origin
   stats.rebased = true;
   stats.rebuilt_subtrees += 1;

@@ -28,23 +28,6 @@ std::pair<Cell, Lattice> root_for(const Tree& t, const Motion& motion) {
   return {cell, lattice};
 }
 
-/// Quantised: re-link the lattice-fixed depth-k subtrees under new top levels.
-void relink(Tree& t, const Cell& new_root, std::vector<StoredPoint>& displaced, UpdateStats& stats) {
-  const int k = int(t.config().quantum_levels);
-  const auto& subtrees = t.detach_subtrees(k);
-  t.place_root(new_root, t.lattice());
-  for (const auto& [id, cell] : subtrees) {
-    if (t.lattice().encloses(new_root, cell)) {
-      t.attach_subtree(id, cell);
-      ++stats.relinked_subtrees;
-    } else {  // cannot hold points after shift-out; dissolved for safety all the same
-      t.dissolve(id, &displaced);
-      ++stats.rebuilt_subtrees;
-    }
-  }
-  t.refit_above(k);
-}
-
 /// Exact: node id fits `cell` under the moved lattice; checks its children against their moved
 /// octants, keeps what still fits and hands the rest on in `displaced`.
 void refit_exact(Tree& t, std::uint32_t id, const Cell& cell, std::vector<StoredPoint>& displaced,
@@ -68,7 +51,7 @@ void refit_exact(Tree& t, std::uint32_t id, const Cell& cell, std::vector<Stored
     }
   });
   t.refit(id);
-  if (t.should_collapse(id)) t.collapse(id);
+  t.collapse_if_small(id);
 }
 
 }  // namespace
@@ -79,7 +62,7 @@ std::vector<StoredPoint> refine_overlap(Tree& tree, const Motion& motion, std::v
   if (tree.root() == kNone) {
     tree.place_root(new_root, lattice);
   } else if (tree.config().recentring == Recentring::Quantised) {
-    if (new_root.lo != tree.root_cell().lo) relink(tree, new_root, displaced, stats);
+    if (new_root.lo != tree.root_cell().lo) tree.relink_top(new_root, int(tree.config().quantum_levels), displaced, stats);
   } else if (lattice.origin != tree.lattice().origin) {
     tree.move_lattice(lattice);
     refit_exact(tree, tree.root(), tree.root_cell(), displaced, stats);

@@ -76,19 +76,17 @@ TEST_F(TreeOpsTest, TakePointsHandsBackEveryPointAndLeavesNoRoot) {
   EXPECT_EQ(taken, inserted_);
 }
 
-TEST_F(TreeOpsTest, DetachedSubtreesReattachUnderAFreshTopWithEveryPoint) {
+TEST_F(TreeOpsTest, RelinkingTheTopKeepsEverySubtreeAndEveryPoint) {
   const Config config;  // Quantised, k = 3
   fill(config, 20000);
   const int k = int(config.quantum_levels);
   const std::size_t live = tree_->nodes().live();
-  const Cell root_cell = tree_->root_cell();
-  const auto subtrees = tree_->detach_subtrees(k);
-  EXPECT_EQ(tree_->root(), kNone);
-  ASSERT_FALSE(subtrees.empty());
-  for (const auto& [id, cell] : subtrees) EXPECT_EQ(cell.depth, k);
-  tree_->place_root(root_cell, tree_->lattice());
-  for (const auto& [id, cell] : subtrees) tree_->attach_subtree(id, cell);
-  tree_->refit_above(k);
+  std::vector<StoredPoint> displaced;
+  UpdateStats stats;
+  tree_->relink_top(tree_->root_cell(), k, displaced, stats);  // the same root: every subtree fits
+  EXPECT_TRUE(displaced.empty());
+  EXPECT_GT(stats.relinked_subtrees, 0u);
+  EXPECT_EQ(stats.rebuilt_subtrees, 0u);
   EXPECT_EQ(check_tree(*tree_), "");
   EXPECT_EQ(held(), inserted_);
   EXPECT_EQ(tree_->nodes().live(), live);  // the same top levels, made afresh
