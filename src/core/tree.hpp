@@ -211,8 +211,10 @@ class Tree {
   /// Makes an empty root for `cell` under `lattice` (inner in Quantised mode, a leaf in Exact
   /// mode); the tree must be empty or hold nothing worth keeping (its root is released).
   void place_root(const Cell& cell, const Lattice& lattice);
-  /// Moves the lattice's walls (Exact re-centring); the nodes keep their cells' indices.
-  void move_lattice(const Lattice& lattice) { lattice_ = lattice; }
+  /// Exact re-centring: moves the lattice's walls (the nodes keep their cells' indices), keeps
+  /// every subtree whose bounds still fit its moved cell, and dissolves the others into
+  /// `displaced` (counted in `stats`: relinked below the root, rebuilt).
+  void move_lattice(const Lattice& lattice, std::vector<StoredPoint>& displaced, UpdateStats& stats);
   /// Quantised re-centring: the root moves to `new_root` (under the same lattice); the subtrees at
   /// depth `depth` (the lattice-fixed cells) are re-linked under new top levels, counted in
   /// `stats` as relinked; one that `new_root` does not enclose (it can hold no point after
@@ -235,6 +237,8 @@ class Tree {
   const MappedVector<std::pair<std::uint32_t, Cell>>& detach_subtrees(int depth);
   void attach_subtree(std::uint32_t id, const Cell& cell);
   void refit_above(int depth);
+  /// move_lattice's walk: node `id` fits `cell` under the moved lattice.
+  void refit_moved(std::uint32_t id, const Cell& cell, std::vector<StoredPoint>& displaced, UpdateStats& stats);
   /// The density-cap cell of stored point p, as CellCounts names it.
   [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
     return CellCounts::key(density_grid_.index(p));

@@ -28,32 +28,6 @@ std::pair<Cell, Lattice> root_for(const Tree& t, const Motion& motion) {
   return {cell, lattice};
 }
 
-/// Exact: node id fits `cell` under the moved lattice; checks its children against their moved
-/// octants, keeps what still fits and hands the rest on in `displaced`.
-void refit_exact(Tree& t, std::uint32_t id, const Cell& cell, std::vector<StoredPoint>& displaced,
-                 UpdateStats& stats) {
-  const NodeStore& nodes = t.nodes();
-  if (nodes[id].leaf) return;
-  nodes.for_each_child(id, [&](int o, std::uint32_t ch) {
-    const Cell child_cell = t.lattice().child(cell, o);
-    if (t.lattice().contains(child_cell, nodes[ch].bounds)) {
-      refit_exact(t, ch, child_cell, displaced, stats);
-      if (nodes[ch].count == 0) {  // everything below moved out of its octant
-        t.dissolve(ch, nullptr);
-        t.unlink_child(id, o);
-      } else if (id == t.root()) {
-        ++stats.relinked_subtrees;
-      }
-    } else {
-      t.dissolve(ch, &displaced);
-      t.unlink_child(id, o);
-      ++stats.rebuilt_subtrees;
-    }
-  });
-  t.refit(id);
-  t.collapse_if_small(id);
-}
-
 }  // namespace
 
 std::vector<StoredPoint> refine_overlap(Tree& tree, const Motion& motion, std::vector<StoredPoint> displaced,
@@ -64,8 +38,7 @@ std::vector<StoredPoint> refine_overlap(Tree& tree, const Motion& motion, std::v
   } else if (tree.config().recentring == Recentring::Quantised) {
     if (new_root.lo != tree.root_cell().lo) tree.relink_top(new_root, int(tree.config().quantum_levels), displaced, stats);
   } else if (lattice.origin != tree.lattice().origin) {
-    tree.move_lattice(lattice);
-    refit_exact(tree, tree.root(), tree.root_cell(), displaced, stats);
+    tree.move_lattice(lattice, displaced, stats);
   }
   return displaced;
 }
