@@ -60,8 +60,7 @@ std::uint32_t look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, c
 
 /// Pass 1, the points: streams every visited leaf's points into `sink`, tagged with their
 /// numbers, a group at a time across leaves; every line of the leaves' columns is asked for a few
-/// leaves ahead (between updates the caller's own work evicts them: in `eco bench`, asking for the
-/// first and last line of each column only left ~0.2 ms a frame of misses on the copy).
+/// leaves ahead, since between updates the caller's own work evicts them from the caches.
 template <class Sink>
 void stream_points(const std::vector<Visit>& visits, Sink& sink) {
   constexpr std::size_t kAhead = 8;

@@ -117,8 +117,7 @@ class NodeStore {
       return id;
     }
     // grow by a quarter, not double: a map's nodes come to rest near their peak, and the
-    // vector's spare room is memory held for nothing (by half measured 1.5 B a point more on
-    // kitti_mini_08, the update level)
+    // vector's spare room is memory held for nothing
     if (pool.size() == pool.capacity()) pool.reserve(pool.capacity() + pool.capacity() / 4 + 64);
     pool.emplace_back();
     return static_cast<std::uint32_t>(pool.size() - 1);

@@ -4,7 +4,7 @@
 // walls stay put between precision-origin moves, so that a voxel map one or two levels below a
 // leaf reads one word instead of the leaf's points (src/query/voxelize.cpp). Kept as the bounds
 // are: grown as points come in, recomputed when they leave. Scalar on purpose: a leaf takes a
-// few points a batch, too few for vector code to pay for itself (measured).
+// few points a batch, too few for vector code to pay for itself.
 
 #include "core/geometry.hpp"
 
