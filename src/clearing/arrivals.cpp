@@ -59,7 +59,7 @@ std::uint32_t leaf_holding(const Tree& t, const std::array<float, 3>& p) {
   return id;
 }
 
-/// A filter of filter_subtree that takes the leaving points out of the leaves holding them:
+/// A filter of Tree::filter that takes the leaving points out of the leaves holding them:
 /// `marked` (sorted) lists those leaves and their ancestors, `at` (sorted) each leaving point's
 /// leaf and index.
 class Release {
@@ -121,9 +121,7 @@ void release_arrivals(Tree& tree, ClearingState& state, UpdateStats& stats) {
   std::sort(marked.begin(), marked.end());
   marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
   Release release(tree, leaving, marked, at);
-  if (tree.root() != kNone && filter_subtree(tree, tree.root(), release) == Filtered::Gone) {
-    tree.place_root(tree.root_cell(), tree.lattice());
-  }
+  tree.filter(release);
   stats.cleared += release.released();
   leaving.clear();
 }

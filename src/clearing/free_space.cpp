@@ -101,7 +101,7 @@ std::vector<std::uint32_t> plan_clearing(const Tree& t, std::vector<Visit>& visi
   return plan;
 }
 
-/// Pass 2, as a filter of filter_subtree: looks only into the subtrees that lost points.
+/// Pass 2, as a filter of Tree::filter: looks only into the subtrees that lost points.
 class Clearing {
  public:
   Clearing(Tree& tree, const std::vector<std::uint32_t>& plan, const std::vector<Visit>& visits,
@@ -154,9 +154,7 @@ void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judge& judg
   std::sort(seen.begin(), seen.end());  // tier 1's undecided points came later
   const std::vector<std::uint32_t> plan = plan_clearing(tree, visits, seen);
   Clearing clearing(tree, plan, visits, seen);
-  if (filter_subtree(tree, tree.root(), clearing) == Filtered::Gone) {
-    tree.place_root(tree.root_cell(), tree.lattice());
-  }
+  tree.filter(clearing);
 }
 
 }  // namespace

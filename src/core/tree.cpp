@@ -24,11 +24,6 @@ Tree::Tree(const Config& config)
   lattice_.max_depth = cfg_.max_depth();
 }
 
-std::array<float, 3> Tree::to_stored(const Eigen::Vector3d& world) const {
-  const Eigen::Vector3d o = anchor();
-  return {float(world[0] - o[0]), float(world[1] - o[1]), float(world[2] - o[2])};
-}
-
 Eigen::Vector3d Tree::to_world(const std::array<float, 3>& stored) const {
   const Eigen::Vector3d o = anchor();
   return {o[0] + double(stored[0]), o[1] + double(stored[1]), o[2] + double(stored[2])};

@@ -37,6 +37,9 @@ struct StartTable {
   std::vector<std::uint32_t> slots;
 };
 
+/// A filter's verdict on a subtree (Tree::filter): keep it whole, drop it whole, or look inside.
+enum class Verdict { KeepAll, DropAll, LookInside };
+
 /// The storage behind an EgoOctree (nodes, leaf blocks, lattice, density counts) and the
 /// structural operations the update stages and the baselines compose. Everything it holds is
 /// private: queries read it through the const accessors; stages change it through the operations,
@@ -72,8 +75,7 @@ class Tree {
   /// Frames taken in so far (the current frame's number).
   [[nodiscard]] std::uint32_t frame() const { return motion_ ? motion_->frame : 0; }
 
-  /// Anchor-frame float coordinates of a world point (the stored representation).
-  [[nodiscard]] std::array<float, 3> to_stored(const Eigen::Vector3d& world) const;
+  /// The world point of stored (anchor-frame float) coordinates.
   [[nodiscard]] Eigen::Vector3d to_world(const std::array<float, 3>& stored) const;
   /// What the age limit compares: the insertion frame (max_age_frames), or the stored time as an
   /// order-keeping integer (max_age_seconds). Nodes keep the smallest below them.
@@ -85,11 +87,6 @@ class Tree {
   /// A stored point's time [s], as the caller gave it to within the clock's precision.
   [[nodiscard]] double to_seconds(float stored_time) const {
     return motion_ ? motion_->clock.origin + double(stored_time) : 0.0;
-  }
-  /// The order-keeping integer of float `f`: a < b exactly when time_key(a) < time_key(b).
-  static std::uint32_t time_key(float f) {
-    const auto u = std::bit_cast<std::uint32_t>(f + 0.0f);  // + 0: -0 becomes +0
-    return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
   }
   /// Calls f(const StoredPoint&) for every point below `id`.
   template <class F>
@@ -120,9 +117,6 @@ class Tree {
   /// into free ones below, kCompactionBudget bytes an update at most, and the pages behind them
   /// are released. No point changes, only where it lies.
   void give_back_memory(std::size_t floor = kMemoryFloor);
-  static constexpr std::size_t kFreeShare = 8;
-  static constexpr std::size_t kMemoryFloor = std::size_t{1} << 14;   // below, not worth it (four pages)
-  static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
 
   // --- insertion --------------------------------------------------------------------------------
   /// Inserts every point of `batch` (each in the root cell), reordering it: the points are
@@ -157,7 +151,6 @@ class Tree {
   /// Points per batch of insert_collected: large enough that a batch shares the walk down to most
   /// start nodes, small enough that its two copies (12 or 28 B a point each) stay near the cache.
   static constexpr std::size_t kInsertChunk = std::size_t(1) << 14;
-  static constexpr std::uint32_t kSortedGroup = 64;  // points below one start node worth sorting (insert_sorted)
   /// The density cap's verdicts on new points[0, n) (n <= kDensityGroup), in their order:
   /// passed[i] = 1 when point i's cell holds fewer points than the cap (it is counted there;
   /// every point passes while the cap is off). Returns how many it refused.
@@ -193,16 +186,11 @@ class Tree {
   void forget(const StoredPoint& s) {
     if (cfg_.density_cap.enabled()) density_.remove(density_key(s.p));
   }
-  /// Releases the subtree at `id` (and the node itself; the root leaves the tree without one);
-  /// appends its points to `out` if given.
-  void dissolve(std::uint32_t id, std::vector<StoredPoint>* out);
-  /// Unlinks child `octant` of inner node `id` (released, or handed on by dissolve/drop).
-  void unlink_child(std::uint32_t id, int octant) { nodes_.child(id, octant) = kNone; }
-  /// Recomputes count, bounds and oldest stamp of `id` from its points or children.
-  void refit(std::uint32_t id);
-  /// Turns inner node `id` into one leaf holding all the points below it when they are so few that
-  /// it should be one (at most N_max, below the lattice's fixed levels); returns whether it did.
-  bool collapse_if_small(std::uint32_t id);
+  /// Takes points out in place as `filter` judges each subtree by its node and each leaf it looks
+  /// into (the interface: core/subtree_filter.hpp); refits what changed, collapses inner nodes
+  /// left with few points, releases emptied ones, and gives a tree left empty a fresh root.
+  template <class Filter>
+  void filter(Filter& filter);
   /// Appends every held point to `out` and leaves the tree without a root; the density counts
   /// stay (the points are meant to come back).
   void take_points(std::vector<StoredPoint>& out);
@@ -225,6 +213,15 @@ class Tree {
   void grow_root(int octant);
 
  private:
+  static constexpr std::size_t kFreeShare = 8;
+  static constexpr std::size_t kMemoryFloor = std::size_t{1} << 14;   // below, not worth it (four pages)
+  static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
+  static constexpr std::uint32_t kSortedGroup = 64;  // points below one start node worth sorting (insert_sorted)
+  /// The order-keeping integer of float `f`: a < b exactly when time_key(a) < time_key(b).
+  static std::uint32_t time_key(float f) {
+    const auto u = std::bit_cast<std::uint32_t>(f + 0.0f);  // + 0: -0 becomes +0
+    return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+  }
   /// Recomputes bounds, oldest stamp and (Quantised mode) subcells of leaf `id` from its points,
   /// `quarters` being its cell's.
   void fit_leaf(std::uint32_t id, const Subcells& quarters);
@@ -239,6 +236,19 @@ class Tree {
   void refit_above(int depth);
   /// move_lattice's walk: node `id` fits `cell` under the moved lattice.
   void refit_moved(std::uint32_t id, const Cell& cell, std::vector<StoredPoint>& displaced, UpdateStats& stats);
+  /// Releases the subtree at `id` (and the node itself; the root leaves the tree without one);
+  /// appends its points to `out` if given.
+  void dissolve(std::uint32_t id, std::vector<StoredPoint>* out);
+  /// Unlinks child `octant` of inner node `id` (released, or handed on by dissolve/drop).
+  void unlink_child(std::uint32_t id, int octant) { nodes_.child(id, octant) = kNone; }
+  /// Recomputes count, bounds and oldest stamp of `id` from its points or children.
+  void refit(std::uint32_t id);
+  /// Turns inner node `id` into one leaf holding all the points below it when they are so few that
+  /// it should be one (at most N_max, below the lattice's fixed levels); returns whether it did.
+  bool collapse_if_small(std::uint32_t id);
+  enum class Filtered { Unchanged, Changed, Gone };  // what filter_below did to a subtree
+  template <class Filter>
+  Filtered filter_below(std::uint32_t id, Filter& filter);
   /// The density-cap cell of stored point p, as CellCounts names it.
   [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
     return CellCounts::key(density_grid_.index(p));

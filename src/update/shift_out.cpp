@@ -34,9 +34,7 @@ class Pruner {
 void prune_shift_out(Tree& tree, const Motion& motion, UpdateStats& stats) {
   if (tree.root() == kNone) return;
   Pruner pruner(tree, motion.box, stats);
-  if (filter_subtree(tree, tree.root(), pruner) == Filtered::Gone) {  // the whole tree left: start afresh
-    tree.place_root(tree.root_cell(), tree.lattice());
-  }
+  tree.filter(pruner);
 }
 
 }  // namespace eco::detail
