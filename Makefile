@@ -28,8 +28,8 @@ DEMO_DATA   ?= $(BUILD)/sim-default
 DEMO_FRAMES ?= 120
 demo: build
 	@test -f $(DEMO_DATA)/poses.txt || $(BUILD)/bin/eco simulate --out $(DEMO_DATA) --frames $(DEMO_FRAMES) --seed 1
-	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --workload static --frames 60 --out results/demo-static
-	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --workload dynamic --out results/demo-dynamic
+	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --preset paper --workload static --frames 60 --out results/demo-static
+	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --preset paper --workload dynamic --out results/demo-dynamic
 
 ## test: every test (C++ and, through pytest, Python), in a release build; the C++ tests again
 ## under AddressSanitizer + UBSan; then each parser's libFuzzer target for a fixed time

@@ -17,9 +17,9 @@ int main(int argc, char** argv) {
   app.footer(
       "Examples:\n"
       "  eco simulate --out data/sim --frames 300 --seed 1     write a synthetic KITTI-layout drive\n"
-      "  eco bench --workload static --frames 100 --out results/static\n"
+      "  eco bench --preset paper --workload static --frames 100 --out results/static\n"
       "                                                        all methods on the simulator's default drive\n"
-      "  eco bench --data data/sim --workload dynamic --methods eco,octree_base,nanoflann --out results/dyn\n"
+      "  eco bench --data data/sim --methods eco,octree_base,nanoflann --out results/robot\n"
       "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out results/run00\n"
       "Run 'eco <command> --help' for each command's options.");
   const eco::cli::Run simulate = eco::cli::add_simulate(app, command_line);

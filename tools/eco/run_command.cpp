@@ -29,13 +29,7 @@ struct RunOptions {
   std::size_t export_every = 0;
   double voxel = 0.1;
   std::uint64_t seed = 1;
-  Config config = raw_scan_config();
-
-  static Config raw_scan_config() {  // raw scans (the library default): at most 2 per 10 cm cell
-    Config c;
-    c.density_cap = {0.1, 2};
-    return c;
-  }
+  Config config;  // the library's defaults
 };
 
 /// `points` minus `origin`, as float32 (PLY): near the origin, millimetres survive the cast.
@@ -176,14 +170,15 @@ Run add_run(CLI::App& app, const std::string& command_line) {
   auto flags = std::make_shared<ConfigFlags>(*cmd, o->config);
   auto file = std::make_shared<OptionsFile>(*cmd, "run");
   cmd->footer(
-      "Defaults suit raw scans: --insert_policy AllInBox with a density cap of 2 points per 10 cm cell.\n"
+      "Defaults are the library's (raw scans: AllInBox, every point in the box, no density cap); the settings\n"
+      "are printed first. --density_cap.cell_size 0.1 --density_cap.max_points 2 keeps 2 points per 10 cm cell.\n"
       "With labels (SemanticKITTI, as the simulator and kitti_mini_08 have), the run counts moving objects'\n"
       "trails; with --clearing.enabled true it also runs the same map without clearing and compares.\n"
       "The output folder gets config.json (feed it back with --config to repeat the run).\n"
       "Examples:\n"
       "  eco run --frames 50\n"
       "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out results/run00\n"
-      "  eco run --data ../shared/data/kitti_mini_00 --recentring Exact --density_cap.max_points 0\n"
+      "  eco run --data ../shared/data/kitti_mini_00 --density_cap.cell_size 0.1 --density_cap.max_points 2\n"
       "  eco run --frames 60 --clearing.enabled true     the simulator's cars: their trails, cleared or kept");
   return [o, flags, file, command_line] {
     file->load();
