@@ -1,6 +1,7 @@
 #include <eco/config.hpp>
 #include <eco/config_fields.hpp>
 
+#include <charconv>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -8,10 +9,15 @@
 namespace eco {
 namespace {
 
+/// `value` in the fewest digits that read back as it (100000, not 1e+05; 0.1, not 0.100000).
+std::string shortest(double value) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return std::string(text, end);
+}
+
 [[noreturn]] void reject(const std::string& field, double value, const std::string& rule) {
-  std::ostringstream msg;
-  msg << "eco::Config: " << field << " = " << value << " is invalid: " << rule;
-  throw std::invalid_argument(msg.str());
+  throw std::invalid_argument("eco::Config: " + field + " = " + shortest(value) + " is invalid: " + rule);
 }
 
 constexpr int kDeepestLevel = 24;  // cells 2^-24 of the root: far below any LiDAR's noise

@@ -156,21 +156,29 @@ std::string ConfigField::format(const Config& config) const {
   return number_text(v);
 }
 
-void ConfigField::check(double v) const {
-  if (kind == Kind::Choice || kind == Kind::Switch) {
-    if (!(v >= 0.0 && v < double(choices.size()) && v == std::floor(v))) {
-      reject(name, number_text(v), "is not one of " + range());
+namespace {
+
+/// ConfigField::check, naming the value as `shown` (what the user typed, where there is text).
+void check_value(const ConfigField& f, double v, std::string_view shown) {
+  using Kind = ConfigField::Kind;
+  if (f.kind == Kind::Choice || f.kind == Kind::Switch) {
+    if (!(v >= 0.0 && v < double(f.choices.size()) && v == std::floor(v))) {
+      reject(f.name, shown, "is not one of " + f.range());
     }
     return;
   }
-  const bool below = lo_open ? !(v > lo) : !(v >= lo);
-  if (!std::isfinite(v) || below || v > hi || (kind == Kind::Count && v != std::floor(v))) {
+  const bool below = f.lo_open ? !(v > f.lo) : !(v >= f.lo);
+  if (!std::isfinite(v) || below || v > f.hi || (f.kind == Kind::Count && v != std::floor(v))) {
     std::ostringstream rule;
-    rule << (kind == Kind::Count ? "must be a whole number in " : "must be finite and in ") << range();
-    if (!unit.empty() && kind == Kind::Real) rule << ' ' << unit;
-    reject(name, number_text(v), rule.str());
+    rule << (f.kind == Kind::Count ? "must be a whole number in " : "must be finite and in ") << f.range();
+    if (!f.unit.empty() && f.kind == Kind::Real) rule << ' ' << f.unit;
+    reject(f.name, shown, rule.str());
   }
 }
+
+}  // namespace
+
+void ConfigField::check(double v) const { check_value(*this, v, number_text(v)); }
 
 void ConfigField::parse(Config& config, std::string_view text) const {
   std::ostringstream quoted;
@@ -191,7 +199,7 @@ void ConfigField::parse(Config& config, std::string_view text) const {
   if (text.empty() || error != std::errc() || at != end) {
     reject(name, shown, kind == Kind::Count ? "is not a whole number" : "is not a number");
   }
-  check(v);
+  check_value(*this, v, text);  // named as typed: 1e5, not 1e+05
   set(config, v);
 }
 

@@ -118,6 +118,11 @@ for name, (content, words) in bad.items():
 with open(os.path.join(WORK, "not_json.json"), "w") as f:
     f.write("{box_side: 3")
 check("not_json.json" in eco("run", "--config", "not_json.json", ok=False).stderr, "a broken file not named")
+message = eco("bench", "--density_cap.max_points", "1e5", "--out", "X", ok=False).stderr
+check("density_cap.max_points = 1e5 is invalid" in message, f"the value not as typed: {message}")
+message = eco("run", "--box_side", "1e5", "--density_cap.cell_size", "0.1", "--density_cap.max_points", "2",
+              "--out", "X", ok=False).stderr
+check("box_side = 100000" in message and "(given: --box_side 1e5, --density_cap.cell_size 0.1)" in message, message)
 message = eco("bench", "--k", "0", "--out", "X", ok=False).stderr
 check("k = 0 must be >= 1" in message, message)
 message = eco("bench", "--leaf_capacity", "0", "--out", "X", ok=False).stderr

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -51,7 +52,21 @@ class ConfigFlags {
       if (options_[i]->count() > 0) f.parse(config, texts_[i]);
       ++i;
     }
-    config.validate();
+    try {
+      config.validate();
+    } catch (const std::invalid_argument& e) {  // name what was given as it was typed
+      std::string given;
+      std::size_t j = 0;
+      for (const ConfigField& f : config_fields()) {
+        const std::string name(f.name);
+        if (options_[j]->count() > 0 && std::string(e.what()).find(name + " = ") != std::string::npos) {
+          given += (given.empty() ? "" : ", ") + ("--" + name + " " + texts_[j]);
+        }
+        ++j;
+      }
+      if (given.empty()) throw;
+      throw std::invalid_argument(std::string(e.what()) + " (given: " + given + ")");
+    }
   }
 
  private:
