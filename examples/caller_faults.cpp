@@ -1,7 +1,8 @@
-// What a map costs the code around it: a registration loop's own per-frame work (the scan copied
-// into a vector grown as points come, one point kept per 1 m voxel through a hash map; KISS-ICP's
-// preprocessing and downsampling allocate so) runs between the map's updates, and its page faults
-// and time are counted, with the map and without one.
+// What a map costs the code around it: a registration loop's own per-frame work (the one
+// `eco bench` times beside every update, src/bench/caller_work.hpp: the scan copied into a vector
+// grown as points come, one point kept per 1 m voxel through a hash map) runs between the map's
+// updates, and its page faults and time are counted, with the map and without one, in a process
+// of its own.
 //
 //   eco_caller_faults DATA_DIR [CELL_SIZE MAX_POINTS [FRAMES [alone|eco]]]
 //
@@ -10,54 +11,21 @@
 // without (alone): one per process, since the C library's heap remembers what a run did. Prints
 // the caller's mean time and page faults per frame, and the update's.
 
+#include "bench/caller_work.hpp"
+
 #include <eco/eco.hpp>
 #include <eco/io/kitti_sequence.hpp>
 
-#include <sys/resource.h>
-
 #include <chrono>
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
-#include <unordered_map>
 #include <vector>
-
-namespace {
-
-long minor_faults() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_minflt;
-}
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-/// The caller's own work on one scan; returns the points it kept.
-std::size_t preprocess(const std::vector<Eigen::Vector3f>& scan) {
-  std::vector<Eigen::Vector3d> points;
-  for (const Eigen::Vector3f& p : scan) {
-    if (p.norm() > 1.0f && p.norm() < 100.0f) points.push_back(p.cast<double>());
-  }
-  std::unordered_map<std::int64_t, Eigen::Vector3d> voxels;
-  voxels.reserve(points.size());
-  for (const Eigen::Vector3d& p : points) {
-    const auto at = [&](int a) { return std::int64_t(std::floor(p[a])) & 0x1FFFFF; };
-    voxels.emplace(at(0) | at(1) << 21 | at(2) << 42, p);
-  }
-  std::vector<Eigen::Vector3d> kept;
-  for (const auto& [key, p] : voxels) kept.push_back(p);
-  return kept.size();
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s DATA_DIR [CELL_SIZE MAX_POINTS [FRAMES]]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s DATA_DIR [CELL_SIZE MAX_POINTS [FRAMES [alone|eco]]]\n", argv[0]);
     return 2;
   }
   try {
@@ -75,32 +43,28 @@ int main(int argc, char** argv) {
     }
     const std::string mode = argc > 5 ? argv[5] : "eco";
     if (mode != "eco" && mode != "alone") throw std::invalid_argument("the mode is '" + mode + "', not alone or eco");
-    {
-      const bool with_map = mode == "eco";
-      eco::EgoOctree map(config);
-      double caller_ms = 0.0, update_ms = 0.0;
-      long caller_faults = 0, update_faults = 0;
-      std::size_t kept = 0;
-      for (std::size_t t = 0; t < frames; ++t) {
-        const long before = minor_faults();
-        auto start = std::chrono::steady_clock::now();
-        kept += preprocess(scans[t]);
-        const double caller = ms_since(start);
-        const long between = minor_faults();
-        start = std::chrono::steady_clock::now();
-        if (with_map) map.update(poses[t], eco::ScanView(scans[t]));
-        const double update = ms_since(start);
-        if (t == 0) continue;  // the first frame builds everything
-        caller_ms += caller;
-        update_ms += update;
-        caller_faults += between - before;
-        update_faults += minor_faults() - between;
-      }
-      const double n = double(frames - 1);
-      std::printf("%-8s caller %.2f ms, %.0f page faults a frame; update %.2f ms, %.0f page faults a frame (%zu kept)\n",
-                  with_map ? "with ECO" : "alone", caller_ms / n, double(caller_faults) / n, update_ms / n,
-                  double(update_faults) / n, kept);
+    const bool with_map = mode == "eco";
+    eco::EgoOctree map(config);
+    double caller_ms = 0.0, update_ms = 0.0;
+    long caller_faults = 0, update_faults = 0;
+    double kept = 0.0;  // what the caller computed, so that it is not optimised away
+    for (std::size_t t = 0; t < frames; ++t) {
+      const eco::bench::CallerWork caller = eco::bench::run_caller_work(eco::ScanView(scans[t]));
+      kept += caller.sum;
+      const long before = eco::bench::minor_faults();
+      const auto start = std::chrono::steady_clock::now();
+      if (with_map) map.update(poses[t], eco::ScanView(scans[t]));
+      const double update = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      if (t == 0) continue;  // the first frame builds everything
+      caller_ms += caller.ms;
+      update_ms += update;
+      caller_faults += caller.faults;
+      update_faults += eco::bench::minor_faults() - before;
     }
+    const double n = double(frames - 1);
+    std::printf("%-8s caller %.2f ms, %.0f page faults a frame; update %.2f ms, %.0f page faults a frame (%g)\n",
+                with_map ? "with ECO" : "alone", caller_ms / n, double(caller_faults) / n, update_ms / n,
+                double(update_faults) / n, kept);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "eco_caller_faults: %s\n", e.what());
     return 1;

@@ -4,9 +4,8 @@
 // A map updated between its caller's own per-frame allocations would otherwise put its blocks and
 // buffers into the free space the caller reuses each frame: the caller's next large allocations
 // no longer fit there, go to the heap's top, and are handed back to the kernel when freed, so
-// every frame faults fresh pages in the caller's code (a KISS-ICP-like client: 7 page faults a
-// frame alone, ~800 with the map's memory in the heap, 7 again with it mapped apart). Memory of
-// the tree's own leaves the caller's heap as if the map were not there.
+// every frame faults fresh pages in the caller's code (examples/eco_caller_faults shows it).
+// Memory of the tree's own leaves the caller's heap as if the map were not there.
 //
 // Allocations under a page still come from the heap (a page each would waste most of it), and so
 // does everything under AddressSanitizer, which checks heap memory only.

@@ -234,7 +234,7 @@ class PointStore {
       }
       std::erase_if(p.free, [&](std::uint32_t i) { return i >= p.used; });
       const std::size_t pages = (std::size_t(p.used) + (std::size_t{1} << p.per_page_shift) - 1) >> p.per_page_shift;
-      p.pages.erase(p.pages.begin() + std::ptrdiff_t(std::min(pages, p.pages.size())), p.pages.end());
+      p.pages.erase(p.pages.begin() + std::ptrdiff_t(pages), p.pages.end());  // the emptied pages go back
       if (4 * p.pages.size() < p.pages.capacity()) p.pages.shrink_to_fit();
       if (4 * p.free.size() < p.free.capacity()) p.free.shrink_to_fit();
     }

@@ -66,7 +66,9 @@ TEST(WorkingBuffers, AreKeptBetweenUpdatesAtWhatTheUpdatesUse) {
     ASSERT_GT(stats.inserted, 1000u);
     if (t == 2) kept = tree.buffer_bytes();
     // neither given back nor grown again: every frame finds its buffers where the last left them
-    if (t > 2) EXPECT_EQ(tree.buffer_bytes(), kept);
+    if (t > 2) {
+      EXPECT_EQ(tree.buffer_bytes(), kept);
+    }
   }
   EXPECT_GE(kept, 1000 * sizeof(BarePoint)) << "a frame's batch is kept";
 }
@@ -80,7 +82,9 @@ TEST(WorkingBuffers, ShrinkWithinTwoWindowsOnceTheUpdatesNeedFarLess) {
   const std::size_t window = WorkingBuffers::kWindow;
   for (std::size_t t = 1; t <= 2 * window; ++t) {
     run_update(tree, nullptr, pose_at(0), ScanView(scan_of(500, rng)));
-    if (t < window) EXPECT_EQ(tree.buffer_bytes(), burst) << "frame " << t << ": kept through the first window";
+    if (t < window) {
+      EXPECT_EQ(tree.buffer_bytes(), burst) << "frame " << t << ": kept through the first window";
+    }
   }
   EXPECT_LT(tree.buffer_bytes(), burst / 8) << "given back after two windows of small frames";
 }
