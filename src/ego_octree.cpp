@@ -23,15 +23,15 @@ std::size_t EgoOctree::size() const { return tree_->size(); }
 
 const UpdateStats& EgoOctree::last_update() const { return last_update_; }
 const Config& EgoOctree::config() const { return tree_->config(); }
-const Eigen::Isometry3d& EgoOctree::pose() const { return tree_->pose(); }
-std::uint32_t EgoOctree::frame_count() const { return tree_->frame(); }
-Eigen::Vector3d EgoOctree::precision_origin() const { return tree_->anchor(); }
-double EgoOctree::time_origin() const { return tree_->to_seconds(0.0f); }
+const Eigen::Isometry3d& EgoOctree::pose() const { return tree_->motion().pose; }
+std::uint32_t EgoOctree::frame_count() const { return tree_->motion().frame; }
+Eigen::Vector3d EgoOctree::precision_origin() const { return tree_->motion().anchor; }
+double EgoOctree::time_origin() const { return tree_->motion().clock.seconds(0.0f); }
 
 Eigen::AlignedBox3d EgoOctree::ego_box() const {
-  if (tree_->frame() == 0) return Eigen::AlignedBox3d();  // empty
-  const detail::Box b = tree_->box();
-  const Eigen::Vector3d anchor = tree_->anchor();
+  if (tree_->motion().frame == 0) return Eigen::AlignedBox3d();  // empty
+  const detail::Box b = tree_->motion().box;
+  const Eigen::Vector3d anchor = tree_->motion().anchor;
   return {Eigen::Vector3d(b.lo[0], b.lo[1], b.lo[2]) + anchor, Eigen::Vector3d(b.hi[0], b.hi[1], b.hi[2]) + anchor};
 }
 
@@ -63,7 +63,7 @@ const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, Sc
 
 const UpdateStats& EgoOctree::update_relative(const Eigen::Isometry3d& previous_T_current, ScanView scan) {
   detail::check_pose(previous_T_current, "previous_T_current");
-  return update(tree_->pose() * previous_T_current, scan);
+  return update(tree_->motion().pose * previous_T_current, scan);
 }
 
 // --- queries (src/query) ----------------------------------------------------------------------

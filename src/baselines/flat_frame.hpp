@@ -46,9 +46,9 @@ class FlatFrame {
   Step advance(const Eigen::Isometry3d& world_T_sensor, const ScanView& scan) {
     UpdateStats stats = detail::begin_update(cfg_, world_T_sensor, scan);
     motion_ = detail::next_motion(world_T_sensor, motion_, cfg_.box_side);
-    density_grid_ = detail::ego_grid(*motion_, cfg_.density_cap.cell_size);
-    if (motion_->origin_shift) density_.clear();  // the caller counts the re-expressed points anew
-    return {stats, motion_->origin_shift, detail::admission(*motion_, cfg_.insert_policy)};
+    density_grid_ = detail::ego_grid(motion_, cfg_.density_cap.cell_size);
+    if (motion_.origin_shift) density_.clear();  // the caller counts the re-expressed points anew
+    return {stats, motion_.origin_shift, detail::admission(motion_, cfg_.insert_policy)};
   }
 
   /// Calls take(p) for each point of `scan` that `step`'s admission and the density cap admit
@@ -70,13 +70,11 @@ class FlatFrame {
     if (cfg_.density_cap.enabled()) density_.remove(key(p));
   }
 
-  [[nodiscard]] detail::Box box() const { return motion_ ? motion_->box : detail::Box{}; }
+  [[nodiscard]] detail::Box box() const { return motion_.box; }
   [[nodiscard]] std::array<double, 3> local(const Eigen::Vector3d& w) const {
     return {w[0] - anchor()[0], w[1] - anchor()[1], w[2] - anchor()[2]};
   }
-  [[nodiscard]] Eigen::Vector3d world(const std::array<float, 3>& p) const {
-    return {anchor()[0] + double(p[0]), anchor()[1] + double(p[1]), anchor()[2] + double(p[2])};
-  }
+  [[nodiscard]] Eigen::Vector3d world(const std::array<float, 3>& p) const { return motion_.to_world(p); }
   /// The closed query box [lo, hi] (world) in the anchor frame.
   [[nodiscard]] detail::Box closed_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
     detail::Box b;
@@ -117,9 +115,9 @@ class FlatFrame {
   }
 
   [[nodiscard]] const Config& config() const { return cfg_; }
-  [[nodiscard]] const Eigen::Isometry3d& pose() const { return motion_ ? motion_->pose : kStart.pose; }
-  [[nodiscard]] const Eigen::Vector3d& anchor() const { return motion_ ? motion_->anchor : kStart.anchor; }
-  [[nodiscard]] std::size_t frames() const { return motion_ ? motion_->frame : 0; }
+  [[nodiscard]] const Eigen::Isometry3d& pose() const { return motion_.pose; }
+  [[nodiscard]] const Eigen::Vector3d& anchor() const { return motion_.anchor; }
+  [[nodiscard]] std::size_t frames() const { return motion_.frame; }
   [[nodiscard]] std::size_t bytes() const { return sizeof(*this) + density_.bytes(); }
 
  private:
@@ -127,10 +125,8 @@ class FlatFrame {
     return detail::CellCounts::key(density_grid_.index(p));
   }
 
-  inline static const detail::Motion kStart{};  // identity pose, zero origin: before the first frame
-
   Config cfg_;
-  std::optional<detail::Motion> motion_;  // the current frame's, as ECO's stage 1 finds it
+  detail::Motion motion_;  // the current frame's, as ECO's stage 1 finds it
   detail::CellCounts density_;
   detail::WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
 };

@@ -52,10 +52,10 @@ class TreeMethod : public Method {
     if (clearing_) s.bytes += clearing_->bytes();
     return s;
   }
-  [[nodiscard]] Eigen::Vector3d precision_origin() const override { return tree_.anchor(); }
+  [[nodiscard]] Eigen::Vector3d precision_origin() const override { return tree_.motion().anchor; }
   [[nodiscard]] std::string check_invariants() const override { return detail::check_tree(tree_, holds_only_the_box()); }
   [[nodiscard]] const Config& config() const override { return tree_.config(); }
-  [[nodiscard]] const Eigen::Isometry3d& pose() const override { return tree_.pose(); }
+  [[nodiscard]] const Eigen::Isometry3d& pose() const override { return tree_.motion().pose; }
 
  protected:
   /// Whether every held point lies in the current ego box (the invariants check it).

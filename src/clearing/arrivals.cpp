@@ -71,7 +71,6 @@ class Release {
   [[nodiscard]] Verdict judge(std::uint32_t id, const Node&) const {
     return std::binary_search(marked_.begin(), marked_.end(), id) ? Verdict::LookInside : Verdict::KeepAll;
   }
-  void drop(std::uint32_t) {}  // never judged DropAll
   bool filter_leaf(std::uint32_t id) {
     const auto leaf = std::equal_range(at_.begin(), at_.end(), id, ByLeaf{});
     const auto first = leaf.first, last = leaf.second;  // not a structured binding: the lambda captures them
@@ -121,7 +120,7 @@ void release_arrivals(Tree& tree, ClearingState& state, UpdateStats& stats) {
   std::sort(marked.begin(), marked.end());
   marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
   Release release(tree, leaving, marked, at);
-  tree.filter(release);
+  tree.filter(release, stats);
   stats.cleared += release.released();
   leaving.clear();
 }

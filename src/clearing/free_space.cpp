@@ -111,7 +111,6 @@ class Clearing {
   [[nodiscard]] Verdict judge(std::uint32_t id, const Node&) const {
     return plan_[id] != 0 ? Verdict::LookInside : Verdict::KeepAll;
   }
-  void drop(std::uint32_t) {}  // never judged DropAll
   bool filter_leaf(std::uint32_t id) {
     std::uint32_t i = visits_[plan_[id] - 1].first;  // retain() asks in order
     auto next = std::lower_bound(seen_.begin(), seen_.end(), i);
@@ -154,7 +153,7 @@ void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judge& judg
   std::sort(seen.begin(), seen.end());  // tier 1's undecided points came later
   const std::vector<std::uint32_t> plan = plan_clearing(tree, visits, seen);
   Clearing clearing(tree, plan, visits, seen);
-  tree.filter(clearing);
+  tree.filter(clearing, stats);
 }
 
 }  // namespace

@@ -106,7 +106,7 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
     n.count += m;
     for (const Point* s = from; s != to; ++s) {
       added.bounds.grow(s->p[0], s->p[1], s->p[2]);
-      added.oldest = std::min(added.oldest, age_key(as_stored(*s)));
+      added.oldest = std::min(added.oldest, age_.key(as_stored(*s)));
     }
     if (keeps_subcells_) n.set_subcells(n.subcells() | (subcells ? *subcells : Subcells(lattice_, cell).bits(from, to)));
     added.add_to(n);

@@ -12,10 +12,10 @@ namespace {
 
 class Checker {
  public:
-  Checker(const detail::Tree& t, bool in_box) : t_(t), box_(t.box()), in_box_(in_box) {}
+  Checker(const detail::Tree& t, bool in_box) : t_(t), box_(t.motion().box), in_box_(in_box) {}
 
   std::string run() {
-    if (t_.root() == detail::kNone) return t_.frame() == 0 ? "" : "no root after an update";
+    if (t_.root() == detail::kNone) return t_.motion().frame == 0 ? "" : "no root after an update";
     if (t_.nodes()[t_.root()].parent != detail::kNone) fail(t_.root(), "root has a parent");
     check(t_.root(), t_.root_cell());
     if (t_.nodes().live() != seen_) fail(t_.root(), "live node count differs from reachable nodes");
@@ -35,7 +35,7 @@ class Checker {
     std::uint32_t count = 0;
     std::uint32_t oldest = detail::kNone;
     if (n.leaf) {
-      if (n.depth < t_.min_leaf_depth() && id != t_.root()) fail(id, "leaf above the lattice depth");
+      if (n.depth < detail::min_leaf_depth(t_.config()) && id != t_.root()) fail(id, "leaf above the lattice depth");
       if (n.count > t_.config().leaf_capacity && n.depth < t_.lattice().max_depth) {
         fail(id, "overfull leaf above the minimum cell size");
       }
@@ -45,7 +45,7 @@ class Checker {
       t_.points().for_each(n.link, n.count, [&](const detail::StoredPoint& s) {
         ++count;
         bounds.grow(s.p[0], s.p[1], s.p[2]);
-        oldest = std::min(oldest, t_.age_key(s));
+        oldest = std::min(oldest, t_.age_limit().key(s));
         if (!t_.lattice().contains(cell, s.p)) fail(id, "point outside its cell");
         if (in_box_ && !box_.contains(s.p[0], s.p[1], s.p[2])) fail(id, "point outside the ego box");
         subcells |= std::uint64_t{1} << walls.of(s.p);
@@ -63,7 +63,7 @@ class Checker {
         oldest = std::min(oldest, c.oldest);
       });
       if (!any && id != t_.root()) fail(id, "inner node without children");
-      if (n.depth >= t_.min_leaf_depth() && n.count <= t_.config().leaf_capacity && id != t_.root()) {
+      if (n.depth >= detail::min_leaf_depth(t_.config()) && n.count <= t_.config().leaf_capacity && id != t_.root()) {
         fail(id, "inner node small enough to be a leaf");
       }
     }

@@ -38,20 +38,20 @@ Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eige
   return anchor;
 }
 
-Motion next_motion(const Eigen::Isometry3d& pose, const std::optional<Motion>& last, double box_side,
-                   bool moves_origin, double scan_latest) {
+Motion next_motion(const Eigen::Isometry3d& pose, const Motion& last, double box_side, bool moves_origin,
+                   double scan_latest) {
   Motion m;
   m.pose = pose;
-  m.clock = (last ? last->clock : Clock{}).after(scan_latest, moves_origin);
+  m.clock = last.clock.after(scan_latest, moves_origin);
+  m.frame = last.frame + 1;
   const Eigen::Vector3d position = pose.translation();
-  if (!last) {
+  if (last.frame == 0) {
     m.anchor = precision_origin_for(position, Eigen::Vector3d::Zero(), true);
   } else {
-    m.anchor = moves_origin ? precision_origin_for(position, last->anchor, false) : last->anchor;
-    if (m.anchor != last->anchor) m.origin_shift = last->anchor - m.anchor;
-    m.previous = ego_box(last->pose.translation(), m.anchor, box_side);
-    m.moved = (position - last->pose.translation()).norm();
-    m.frame = last->frame + 1;
+    m.anchor = moves_origin ? precision_origin_for(position, last.anchor, false) : last.anchor;
+    if (m.anchor != last.anchor) m.origin_shift = last.anchor - m.anchor;
+    m.previous = ego_box(last.pose.translation(), m.anchor, box_side);
+    m.moved = (position - last.pose.translation()).norm();
   }
   m.box = ego_box(position, m.anchor, box_side);
   return m;

@@ -39,18 +39,26 @@ struct Clock {
   /// The clock once a scan whose latest time is `scan_latest` (-inf: no times) is taken in; a
   /// clock that does not `move` keeps its first origin for good.
   [[nodiscard]] Clock after(double scan_latest, bool move = true) const;
+  /// A stored time [s], as the caller gave it to within the clock's precision.
+  [[nodiscard]] double seconds(float stored) const { return origin + double(stored); }
 };
 
+/// A frame's motion; the default one is the map's before its first frame (frame 0).
 struct Motion {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< world_T_sensor
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();        ///< the precision origin, world
   Box box;                                                 ///< Box(p_t), anchor frame
   std::optional<Box> previous;  ///< Box(p_{t-1}) in the same frame; none on the first frame
   double moved = 0.0;           ///< |p_t - p_{t-1}| [m]
-  std::uint32_t frame = 1;      ///< this frame's number, 1 for the first (insertion stamps)
+  std::uint32_t frame = 0;      ///< this frame's number, 1 for the first (insertion stamps)
   /// (old origin - new origin) when the precision origin moved this frame: held points move by it.
   std::optional<Eigen::Vector3d> origin_shift;
   Clock clock;                  ///< the map's clock after this frame's scan
+
+  /// The world point of stored (anchor-frame float) coordinates.
+  [[nodiscard]] Eigen::Vector3d to_world(const std::array<float, 3>& stored) const {
+    return {anchor[0] + double(stored[0]), anchor[1] + double(stored[1]), anchor[2] + double(stored[2])};
+  }
 };
 
 /// Stored point `p` re-expressed against a moved precision origin (`shift` = old origin - new
@@ -76,10 +84,10 @@ inline WorldGrid ego_grid(const Motion& m, double size) {
 Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eigen::Vector3d& anchor,
                                      bool first);
 
-/// The motion to `pose` after `last` (none: the first frame), with a scan whose latest time is
+/// The motion to `pose` after `last` (frame 0: this is the first frame), with a scan whose latest time is
 /// `scan_latest` (-inf: none). `moves_origin` false keeps the first frame's precision and time
 /// origins for good (a global map that never re-expresses its points).
-Motion next_motion(const Eigen::Isometry3d& pose, const std::optional<Motion>& last, double box_side,
+Motion next_motion(const Eigen::Isometry3d& pose, const Motion& last, double box_side,
                    bool moves_origin = true,
                    double scan_latest = -std::numeric_limits<double>::infinity());
 

@@ -4,29 +4,28 @@
 // inside — and filters the leaves it looks into; the walk refits what changed, collapses inner
 // nodes left with few points and releases emptied ones.
 //
-// A filter provides Verdict judge(std::uint32_t id, const Node&), void drop(std::uint32_t id)
-// (the subtree leaves the tree: Tree::drop) and bool filter_leaf(std::uint32_t id) (keeps some
-// of the leaf's points and refits it: Tree::filter_leaf or Tree::retain; false when it kept them
-// all and left the leaf untouched).
+// A filter provides Verdict judge(std::uint32_t id, const Node&) and bool filter_leaf(std::uint32_t
+// id) (keeps some of the leaf's points and refits it: Tree::retain; false when it kept them all
+// and left the leaf untouched). A subtree judged DropAll leaves the tree whole.
 
 #include "core/tree.hpp"
 
 namespace eco::detail {
 
 template <class Filter>
-void Tree::filter(Filter& filter) {
+void Tree::filter(Filter& filter, UpdateStats& stats) {
   if (root_ == kNone) return;
-  if (filter_below(root_, filter) == Filtered::Gone) place_root(root_cell_, lattice_);  // everything left
+  if (filter_below(root_, filter, stats) == Filtered::Gone) place_root(root_cell_, lattice_);  // everything left
 }
 
 template <class Filter>
-Tree::Filtered Tree::filter_below(std::uint32_t id, Filter& filter) {
+Tree::Filtered Tree::filter_below(std::uint32_t id, Filter& filter, UpdateStats& stats) {
   const Node& n = nodes_[id];
   if (n.count == 0) return Filtered::Unchanged;
   const Verdict verdict = filter.judge(id, n);
   if (verdict == Verdict::KeepAll) return Filtered::Unchanged;
   if (verdict == Verdict::DropAll) {
-    filter.drop(id);
+    drop(id, stats);
     return Filtered::Gone;
   }
   if (n.leaf) {
@@ -34,7 +33,7 @@ Tree::Filtered Tree::filter_below(std::uint32_t id, Filter& filter) {
   } else {
     bool changed = false;
     nodes_.for_each_child(id, [&](int o, std::uint32_t ch) {
-      const Filtered below = filter_below(ch, filter);
+      const Filtered below = filter_below(ch, filter, stats);
       if (below == Filtered::Gone) unlink_child(id, o);
       changed = changed || below != Filtered::Unchanged;
     });

@@ -19,14 +19,10 @@ Tree::Tree(const Config& config)
                       config.attributes.time}),
       density_(config.density_cap.max_points) {
   cfg_.validate();
-  min_leaf_depth_ = cfg_.recentring == Recentring::Quantised ? int(cfg_.quantum_levels) : 0;
+  min_leaf_depth_ = min_leaf_depth(cfg_);
   keeps_subcells_ = cfg_.recentring == Recentring::Quantised;
   lattice_.max_depth = cfg_.max_depth();
-}
-
-Eigen::Vector3d Tree::to_world(const std::array<float, 3>& stored) const {
-  const Eigen::Vector3d o = anchor();
-  return {o[0] + double(stored[0]), o[1] + double(stored[1]), o[2] + double(stored[2])};
+  age_ = AgeLimit::of(cfg_, motion_);
 }
 
 std::size_t Tree::bytes() const {
@@ -36,29 +32,9 @@ std::size_t Tree::bytes() const {
 
 void Tree::set_motion(const Motion& m) {
   motion_ = m;
-  age_cutoff_ = compute_age_cutoff();
+  age_ = AgeLimit::of(cfg_, m);
   density_grid_ = ego_grid(m, cfg_.density_cap.cell_size);
-}
-
-bool Tree::let_go_unless_stays(const StoredPoint& s, const Box& box, UpdateStats& stats) {
-  if (stays(s, box)) return false;
-  ++(box.contains(s.p[0], s.p[1], s.p[2]) ? stats.aged_out : stats.pruned);
-  forget(s);
-  return true;
-}
-
-std::uint32_t Tree::compute_age_cutoff() const {
-  if (cfg_.max_age_seconds > 0.0) {
-    if (!motion_ || motion_->clock.latest == -std::numeric_limits<double>::infinity()) return 0;
-    // stored time f is aged when origin + f < latest - max age, i.e. when f is below the least
-    // float at or above c (no float lies between c and that one)
-    const double c = motion_->clock.latest - cfg_.max_age_seconds - motion_->clock.origin;
-    float least = float(c);
-    if (double(least) < c) least = std::nextafter(least, std::numeric_limits<float>::infinity());
-    return time_key(least);
-  }
-  const std::uint32_t age = cfg_.max_age_frames;
-  return age > 0 && frame() > age ? frame() - age : 0;
+  if (m.clock.shift) shift_times(*m.clock.shift);  // in place, nothing moves
 }
 
 void Tree::shift_times(double shift) {
@@ -250,9 +226,9 @@ void Tree::fit_leaf(std::uint32_t id, const Subcells& quarters) {
   Aabb bounds;
   for (std::uint32_t i = 0; i < n.count; ++i) bounds.grow(s.x[i], s.y[i], s.z[i]);
   const bool aged = s.stamps != nullptr || s.times != nullptr;
-  std::uint32_t oldest = n.count > 0 && !aged ? age_key(StoredPoint{}) : kNone;
+  std::uint32_t oldest = n.count > 0 && !aged ? age_.key(StoredPoint{}) : kNone;
   if (aged) {
-    for (std::uint32_t i = 0; i < n.count; ++i) oldest = std::min(oldest, age_key(s[i]));
+    for (std::uint32_t i = 0; i < n.count; ++i) oldest = std::min(oldest, age_.key(s[i]));
   }
   std::uint64_t subcells = 0;
   if (keeps_subcells_) {
@@ -285,12 +261,6 @@ void Tree::drop(std::uint32_t id, UpdateStats& stats) {
                      [&](auto&& offer) { walk_points(id, [&](const StoredPoint& s) { offer(s.p); }); });
   }
   dissolve(id, nullptr);
-}
-
-void Tree::filter_leaf(std::uint32_t id, const Box& box, UpdateStats& stats) {
-  Node& n = nodes_[id];
-  n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) { return !let_go_unless_stays(s, box, stats); });
-  refit(id);
 }
 
 void Tree::take_points(std::vector<StoredPoint>& out) {

@@ -2,6 +2,7 @@
 // The state behind an EgoOctree, and the structural operations the update stages share:
 // inserting a batch of points, splitting a leaf, dissolving and collapsing subtrees, refitting bounds.
 
+#include "core/age_limit.hpp"
 #include "core/cell_counts.hpp"
 #include "core/density_gate.hpp"
 #include "core/geometry.hpp"
@@ -37,6 +38,11 @@ struct StartTable {
   std::vector<std::uint32_t> slots;
 };
 
+/// The depth above which every node is inner: k in Quantised mode (the lattice-fixed levels), else 0.
+inline int min_leaf_depth(const Config& config) {
+  return config.recentring == Recentring::Quantised ? int(config.quantum_levels) : 0;
+}
+
 /// A filter's verdict on a subtree (Tree::filter): keep it whole, drop it whole, or look inside.
 enum class Verdict { KeepAll, DropAll, LookInside };
 
@@ -55,60 +61,25 @@ class Tree {
   [[nodiscard]] std::uint32_t root() const { return root_; }
   [[nodiscard]] const Cell& root_cell() const { return root_cell_; }
   [[nodiscard]] const Lattice& lattice() const { return lattice_; }
-  /// k in Quantised mode (the top k levels are always inner), else 0.
-  [[nodiscard]] int min_leaf_depth() const { return min_leaf_depth_; }
   [[nodiscard]] std::size_t size() const { return root_ == kNone ? 0 : nodes_[root_].count; }
   /// Bytes held: nodes, leaf blocks, start table, working buffers, density counts.
   [[nodiscard]] std::size_t bytes() const;
   /// Of those, the working buffers' (core/working_buffers.hpp), kept between updates so that no
   /// frame pays for fresh pages.
   [[nodiscard]] std::size_t buffer_bytes() const;
-
-  /// The current frame's motion (set_motion); none before the first.
-  [[nodiscard]] const std::optional<Motion>& motion() const { return motion_; }
-  [[nodiscard]] const Eigen::Isometry3d& pose() const {
-    static const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
-    return motion_ ? motion_->pose : identity;
-  }
-  [[nodiscard]] Eigen::Vector3d anchor() const { return motion_ ? motion_->anchor : Eigen::Vector3d::Zero(); }
-  [[nodiscard]] Box box() const { return motion_ ? motion_->box : Box{}; }
-  /// Frames taken in so far (the current frame's number).
-  [[nodiscard]] std::uint32_t frame() const { return motion_ ? motion_->frame : 0; }
-
-  /// The world point of stored (anchor-frame float) coordinates.
-  [[nodiscard]] Eigen::Vector3d to_world(const std::array<float, 3>& stored) const;
-  /// What the age limit compares: the insertion frame (max_age_frames), or the stored time as an
-  /// order-keeping integer (max_age_seconds). Nodes keep the smallest below them.
-  [[nodiscard]] std::uint32_t age_key(const StoredPoint& s) const {
-    return cfg_.max_age_seconds > 0.0 ? time_key(s.time) : s.stamp;
-  }
-  /// Points whose age key is below this are past the age limit (0 while no limit applies).
-  [[nodiscard]] std::uint32_t age_cutoff() const { return age_cutoff_; }
-  /// A stored point's time [s], as the caller gave it to within the clock's precision.
-  [[nodiscard]] double to_seconds(float stored_time) const {
-    return motion_ ? motion_->clock.origin + double(stored_time) : 0.0;
-  }
-  /// Calls f(const StoredPoint&) for every point below `id`.
-  template <class F>
-  void walk_points(std::uint32_t id, F&& f) const {
-    const Node& n = nodes_[id];
-    if (n.leaf) {
-      points_.for_each(n.link, n.count, f);
-      return;
-    }
-    nodes_.for_each_child(id, [&](int, std::uint32_t ch) { walk_points(ch, f); });
-  }
+  /// The current frame's motion (set_motion): pose, precision origin, box, frame number, clock.
+  [[nodiscard]] const Motion& motion() const { return motion_; }
+  /// The current frame's age limit.
+  [[nodiscard]] const AgeLimit& age_limit() const { return age_; }
 
   // --- the frame --------------------------------------------------------------------------------
-  /// Enters a new frame (stage 1): its motion, and the density grid seen from its anchor.
+  /// Enters a new frame (stage 1): its motion, the density grid seen from its anchor, its age
+  /// limit, and the held times re-expressed in place when the clock's origin moved.
   void set_motion(const Motion& m);
   /// Whether point `s` stays under `box` and the age limit (a pure test).
   [[nodiscard]] bool stays(const StoredPoint& s, const Box& box) const {
-    return box.contains(s.p[0], s.p[1], s.p[2]) && age_key(s) >= age_cutoff();
+    return box.contains(s.p[0], s.p[1], s.p[2]) && age_.admits(s);
   }
-  /// Lets point `s` go when it does not stay: counts it in `stats` (pruned when outside `box`,
-  /// else aged out) and takes it out of the density counts. Returns whether it went.
-  bool let_go_unless_stays(const StoredPoint& s, const Box& box, UpdateStats& stats);
   /// Counts the density cells of `held` anew (after the precision origin moved, their keys did).
   void recount_density(const std::vector<StoredPoint>& held);
 
@@ -161,14 +132,6 @@ class Tree {
   void rebuild_start_table(int depth);
 
   // --- removal and repair -----------------------------------------------------------------------
-  /// Re-expresses every held time against a time origin moved by -`shift` [s] (old origin - new
-  /// origin), in place, and refits the nodes' age keys when they are read from the times.
-  void shift_times(double shift);
-  /// Releases the subtree at `id` whose points leave the tree (counted as pruned).
-  void drop(std::uint32_t id, UpdateStats& stats);
-  /// Keeps the points of leaf `id` that stay (fate_of), and refits it; the others are counted and
-  /// leave the density counts.
-  void filter_leaf(std::uint32_t id, const Box& box, UpdateStats& stats);
   /// Keeps the points of leaf `id` for which keep(const StoredPoint&) is true, and refits it; the
   /// others leave the density counts.
   template <class Keep>
@@ -187,10 +150,11 @@ class Tree {
     if (cfg_.density_cap.enabled()) density_.remove(density_key(s.p));
   }
   /// Takes points out in place as `filter` judges each subtree by its node and each leaf it looks
-  /// into (the interface: core/subtree_filter.hpp); refits what changed, collapses inner nodes
-  /// left with few points, releases emptied ones, and gives a tree left empty a fresh root.
+  /// into (the interface: core/subtree_filter.hpp); a subtree judged DropAll leaves whole, counted
+  /// in `stats` as pruned. Refits what changed, collapses inner nodes left with few points,
+  /// releases emptied ones, and gives a tree left empty a fresh root.
   template <class Filter>
-  void filter(Filter& filter);
+  void filter(Filter& filter, UpdateStats& stats);
   /// Appends every held point to `out` and leaves the tree without a root; the density counts
   /// stay (the points are meant to come back).
   void take_points(std::vector<StoredPoint>& out);
@@ -217,11 +181,21 @@ class Tree {
   static constexpr std::size_t kMemoryFloor = std::size_t{1} << 14;   // below, not worth it (four pages)
   static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
   static constexpr std::uint32_t kSortedGroup = 64;  // points below one start node worth sorting (insert_sorted)
-  /// The order-keeping integer of float `f`: a < b exactly when time_key(a) < time_key(b).
-  static std::uint32_t time_key(float f) {
-    const auto u = std::bit_cast<std::uint32_t>(f + 0.0f);  // + 0: -0 becomes +0
-    return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+  /// Calls f(const StoredPoint&) for every point below `id`.
+  template <class F>
+  void walk_points(std::uint32_t id, F&& f) const {
+    const Node& n = nodes_[id];
+    if (n.leaf) {
+      points_.for_each(n.link, n.count, f);
+      return;
+    }
+    nodes_.for_each_child(id, [&](int, std::uint32_t ch) { walk_points(ch, f); });
   }
+  /// Re-expresses every held time against a time origin moved by -`shift` [s] (old origin - new
+  /// origin), in place, and refits the nodes' age keys when they are read from the times.
+  void shift_times(double shift);
+  /// Releases the subtree at `id` whose points leave the tree (counted as pruned).
+  void drop(std::uint32_t id, UpdateStats& stats);
   /// Recomputes bounds, oldest stamp and (Quantised mode) subcells of leaf `id` from its points,
   /// `quarters` being its cell's.
   void fit_leaf(std::uint32_t id, const Subcells& quarters);
@@ -248,13 +222,11 @@ class Tree {
   bool collapse_if_small(std::uint32_t id);
   enum class Filtered { Unchanged, Changed, Gone };  // what filter_below did to a subtree
   template <class Filter>
-  Filtered filter_below(std::uint32_t id, Filter& filter);
+  Filtered filter_below(std::uint32_t id, Filter& filter, UpdateStats& stats);
   /// The density-cap cell of stored point p, as CellCounts names it.
   [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
     return CellCounts::key(density_grid_.index(p));
   }
-  /// The age cutoff of the current motion.
-  [[nodiscard]] std::uint32_t compute_age_cutoff() const;
   /// Creates the root node for root_cell_ (inner in Quantised mode, an empty leaf in Exact mode).
   void make_root();
   /// The child of inner node `id` (cell `cell`) at `octant`, created empty if missing.
@@ -309,10 +281,10 @@ class Tree {
   std::uint32_t root_ = kNone;
   Cell root_cell_;
   Lattice lattice_;
-  int min_leaf_depth_ = 0;
+  int min_leaf_depth_ = 0;  // min_leaf_depth(cfg_)
   bool keeps_subcells_ = false;  // Quantised mode: every leaf's Node::subcells kept
-  std::optional<Motion> motion_;
-  std::uint32_t age_cutoff_ = 0;  // of motion_
+  Motion motion_;
+  AgeLimit age_;  // of motion_
   StartTable start_;
   CellCounts density_;  // points per density-cap cell, kept while the cap is on
   WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor

@@ -15,25 +15,25 @@ namespace eco::detail {
 
 /// The world position of `q` given in `frame`.
 inline Eigen::Vector3d world_of(const Tree& t, const Eigen::Vector3d& q, Frame frame) {
-  return frame == Frame::Ego ? Eigen::Vector3d(q + t.pose().translation()) : q;
+  return frame == Frame::Ego ? Eigen::Vector3d(q + t.motion().pose.translation()) : q;
 }
 
 /// `q` (given in `frame`) in the anchor frame, where stored points live.
 inline std::array<double, 3> to_anchor_frame(const Tree& t, const Eigen::Vector3d& q, Frame frame) {
   const Eigen::Vector3d w = world_of(t, q, frame);
-  const Eigen::Vector3d o = t.anchor();
+  const Eigen::Vector3d o = t.motion().anchor;
   return {w[0] - o[0], w[1] - o[1], w[2] - o[2]};
 }
 
 /// A stored point expressed in `frame`.
 inline Eigen::Vector3d from_stored(const Tree& t, const std::array<float, 3>& p, Frame frame) {
-  const Eigen::Vector3d w = t.to_world(p);
-  return frame == Frame::Ego ? Eigen::Vector3d(w - t.pose().translation()) : w;
+  const Eigen::Vector3d w = t.motion().to_world(p);
+  return frame == Frame::Ego ? Eigen::Vector3d(w - t.motion().pose.translation()) : w;
 }
 
 /// The attributes of stored point `s` as the caller gave them (zero where not kept).
 inline PointAttributes attributes_of(const Tree& t, const StoredPoint& s) {
-  return {s.id, s.intensity, t.points().columns().times ? t.to_seconds(s.time) : 0.0};
+  return {s.id, s.intensity, t.points().columns().times ? t.motion().clock.seconds(s.time) : 0.0};
 }
 
 inline void require_finite(const Eigen::Vector3d& v, const char* what, const char* name) {

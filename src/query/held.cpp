@@ -10,7 +10,7 @@ namespace eco::detail {
 void for_each_held(const Tree& t, const std::function<void(const Eigen::Vector3d&)>& visit) {
   if (t.root() == kNone) return;
   walk_leaves(
-      t, t.root(), [](const Aabb&) { return 2; }, [&](const StoredPoint& s, bool) { visit(t.to_world(s.p)); });
+      t, t.root(), [](const Aabb&) { return 2; }, [&](const StoredPoint& s, bool) { visit(t.motion().to_world(s.p)); });
 }
 
 std::vector<HeldPoint> held_points(const Tree& t) {
@@ -19,7 +19,7 @@ std::vector<HeldPoint> held_points(const Tree& t) {
   if (t.root() == kNone) return out;
   walk_leaves(
       t, t.root(), [](const Aabb&) { return 2; },
-      [&](const StoredPoint& s, bool) { out.push_back({t.to_world(s.p), attributes_of(t, s)}); });
+      [&](const StoredPoint& s, bool) { out.push_back({t.motion().to_world(s.p), attributes_of(t, s)}); });
   return out;
 }
 

@@ -272,7 +272,7 @@ std::size_t knn_query(const Tree& t, const Eigen::Vector3d& query, std::span<Nei
   const bool times = t.config().attributes.time;
   for (Neighbor& n : out.first(found)) {
     n.point = from_stored(t, {float(n.point[0]), float(n.point[1]), float(n.point[2])}, frame);
-    if (times) n.attributes.time = t.to_seconds(float(n.attributes.time));
+    if (times) n.attributes.time = t.motion().clock.seconds(float(n.attributes.time));
   }
   return found;
 }

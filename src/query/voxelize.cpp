@@ -42,7 +42,7 @@ void require_representable(const Tree& t, double resolution) {
   const Aabb& b = t.nodes()[t.root()].bounds;
   double reach = 0.0;
   for (int a = 0; a < 3; ++a) {
-    reach = std::max({reach, std::abs(t.anchor()[a] + double(b.lo[a])), std::abs(t.anchor()[a] + double(b.hi[a]))});
+    reach = std::max({reach, std::abs(t.motion().anchor[a] + double(b.lo[a])), std::abs(t.motion().anchor[a] + double(b.hi[a]))});
   }
   if (!grid_fits(reach + 1.0, resolution)) {
     std::ostringstream s;
@@ -62,7 +62,7 @@ class LatticeVoxels {
  public:
   LatticeVoxels(const Tree& t, double resolution, int shift, std::vector<VoxelKey>& out)
       : t_(t),
-        grid_({t.anchor()[0], t.anchor()[1], t.anchor()[2]}, resolution),
+        grid_({t.motion().anchor[0], t.motion().anchor[1], t.motion().anchor[2]}, resolution),
         shift_(shift),
         depth_(t.lattice().max_depth - shift),
         out_(out) {}
@@ -182,7 +182,7 @@ std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution) {
     return keys;
   }
   keys.reserve(t.nodes()[t.root()].count);
-  const Eigen::Vector3d anchor = t.anchor();
+  const Eigen::Vector3d anchor = t.motion().anchor;
   const WorldGrid grid({anchor[0], anchor[1], anchor[2]}, resolution);
   walk_leaves(
       t, t.root(), [](const Aabb&) { return 2; },

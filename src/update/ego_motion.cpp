@@ -18,7 +18,11 @@ std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion, UpdateStats& s
   tree.take_points(held);
   const Eigen::Vector3d shift = *motion.origin_shift;  // exact: multiples of kOriginStep
   for (StoredPoint& s : held) s.p = rebased(s.p, shift);
-  std::erase_if(held, [&](const StoredPoint& s) { return tree.let_go_unless_stays(s, motion.box, stats); });
+  std::erase_if(held, [&](const StoredPoint& s) {
+    if (!leaves(tree, s, motion.box, stats)) return false;
+    tree.forget(s);
+    return true;
+  });
   tree.recount_density(held);  // every cell key moved with the origin
   stats.rebased = true;
   stats.rebuilt_subtrees += 1;
@@ -41,7 +45,6 @@ EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor
                              latest_time(scan, tree.config())),
                  {}};
   tree.set_motion(out.motion);  // the density keys of the re-expressed points need the new origin
-  if (out.motion.clock.shift) tree.shift_times(*out.motion.clock.shift);  // in place, nothing moves
   if (out.motion.origin_shift) out.displaced = rebase(tree, out.motion, stats);
   return out;
 }
@@ -49,7 +52,7 @@ EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor
 Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
   tree.set_motion(next_motion(world_T_sensor, tree.motion(), tree.config().box_side, /*moves_origin=*/false,
                               latest_time(scan, tree.config())));
-  return *tree.motion();
+  return tree.motion();
 }
 
 }  // namespace eco::detail

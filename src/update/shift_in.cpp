@@ -48,7 +48,7 @@ template <class Make>
 std::size_t drop_aged(const Tree& tree, AdmittedGroup& group, const Make& make) {
   std::size_t kept = 0;
   for (std::size_t j = 0; j < group.size; ++j) {
-    if (tree.age_key(as_stored(make(group.points[j], group.index[j]))) < tree.age_cutoff()) continue;
+    if (tree.age_limit().key(as_stored(make(group.points[j], group.index[j]))) < tree.age_limit().cutoff) continue;
     group.points[kept] = group.points[j];
     group.index[kept] = group.index[j];
     ++kept;

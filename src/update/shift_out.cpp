@@ -9,16 +9,15 @@ namespace {
 class Pruner {
  public:
   Pruner(Tree& tree, const Box& box, UpdateStats& stats)
-      : t_(tree), box_(box), stats_(stats), cutoff_(tree.age_cutoff()) {}
+      : t_(tree), box_(box), stats_(stats), cutoff_(tree.age_limit().cutoff) {}
 
   [[nodiscard]] Verdict judge(std::uint32_t, const Node& n) const {
     if (n.oldest >= cutoff_ && box_.contains_all(n.bounds)) return Verdict::KeepAll;
     if (box_.misses(n.bounds)) return Verdict::DropAll;
     return Verdict::LookInside;
   }
-  void drop(std::uint32_t id) { t_.drop(id, stats_); }
   bool filter_leaf(std::uint32_t id) {
-    t_.filter_leaf(id, box_, stats_);
+    t_.retain(id, [&](const StoredPoint& s) { return !leaves(t_, s, box_, stats_); });
     return true;  // judged LookInside: it straddles the box's walls or holds aged points
   }
 
@@ -34,7 +33,13 @@ class Pruner {
 void prune_shift_out(Tree& tree, const Motion& motion, UpdateStats& stats) {
   if (tree.root() == kNone) return;
   Pruner pruner(tree, motion.box, stats);
-  tree.filter(pruner);
+  tree.filter(pruner, stats);
+}
+
+bool leaves(const Tree& tree, const StoredPoint& s, const Box& box, UpdateStats& stats) {
+  if (tree.stays(s, box)) return false;
+  ++(box.contains(s.p[0], s.p[1], s.p[2]) ? stats.aged_out : stats.pruned);
+  return true;
 }
 
 }  // namespace eco::detail

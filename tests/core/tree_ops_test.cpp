@@ -5,6 +5,7 @@
 
 #include "core/invariants.hpp"
 #include "core/tree.hpp"
+#include "query/frames.hpp"
 #include "update/stages.hpp"
 
 #include <gtest/gtest.h>
@@ -27,7 +28,7 @@ class TreeOpsTest : public ::testing::Test {
     tree_ = std::make_unique<Tree>(config);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = Eigen::Vector3d(3.2, -4.1, 0.7);
-    const Motion motion = next_motion(pose, std::nullopt, config.box_side);
+    const Motion motion = next_motion(pose, Motion{}, config.box_side);
     tree_->set_motion(motion);
     UpdateStats stats;
     EXPECT_TRUE(refine_overlap(*tree_, motion, {}, stats).empty());  // places the first root
@@ -54,7 +55,10 @@ class TreeOpsTest : public ::testing::Test {
 
   [[nodiscard]] Points held() const {
     Points out;
-    if (tree_->root() != kNone) tree_->walk_points(tree_->root(), [&](const StoredPoint& s) { out.push_back(s.p); });
+    if (tree_->root() != kNone) {
+      walk_leaves(
+          *tree_, tree_->root(), [](const Aabb&) { return 2; }, [&](const StoredPoint& s, bool) { out.push_back(s.p); });
+    }
     std::sort(out.begin(), out.end());
     return out;
   }
@@ -121,7 +125,7 @@ TEST_F(TreeOpsTest, PointsOnTheLatticesWallsGoWhereTheirOctantsLead) {
     fill(config, 0);
     const Lattice& lattice = tree_->lattice();
     const Cell root = tree_->root_cell();
-    const Box box = tree_->motion()->box;
+    const Box box = tree_->motion().box;
     std::mt19937 rng(leaf_capacity);
     std::uniform_int_distribution<std::int64_t> cluster(0, lattice.side(0) - 1), near(-40, 40);
     std::vector<StoredPoint> batch;
@@ -156,7 +160,7 @@ TEST_F(TreeOpsTest, PointsOnTheLatticesWallsGoWhereTheirOctantsLead) {
 TEST_F(TreeOpsTest, DropAndFilterCountWhatLeaves) {
   fill(Config{}, 5000);
   UpdateStats stats;
-  Motion motion = *tree_->motion();
+  Motion motion = tree_->motion();
   Box& half = motion.box;
   half.hi[0] = (half.lo[0] + half.hi[0]) / 2;  // keep the lower half in x
   prune_shift_out(*tree_, motion, stats);
@@ -177,7 +181,7 @@ TEST_F(TreeOpsTest, GivingBackMemoryMovesNoPointAndFreesTheBlocksAShrunkMapHeld)
     fill(config, 40000);
     const std::size_t full = tree_->points().bytes();
     UpdateStats stats;
-    Motion motion = *tree_->motion();
+    Motion motion = tree_->motion();
     Box& corner = motion.box;  // keep the far corner from the clusters: most points and nodes leave
     for (int a = 0; a < 3; ++a) corner.lo[a] = corner.hi[a] - 0.6 * (corner.hi[a] - corner.lo[a]);
     prune_shift_out(*tree_, motion, stats);
