@@ -100,18 +100,36 @@ def main():
               f"{e['chamfer_m']:.4f} → {c['chamfer_m']:.4f} |")
     print("\n| goal | line | measured | verdict |\n|---|--:|---|---|")
     goal_row("update with clearing × without", on_off, 2.0, True)
+    paper_goals = {"static": 10.0, "dynamic": 8.0}
     for workload in ("static", "dynamic"):
-        m = load(f"sim-paper-{workload}")
-        if m is None:
-            continue
-        print(f"\n### The paper's {workload} workload (simulator)\n")
-        print("| method | update ms | × eco | × octree_base | voxel ms | KNN ms | B/pt |\n|---|--:|--:|--:|--:|--:|--:|")
-        for name, x in m.items():
-            if name == "scan_only":
-                continue
-            print(f"| {name} | {x['update_ms']:.2f} | {ratio(x['update_ms'], m['eco']['update_ms']):.2f}× | "
-                  f"{ratio(x['update_ms'], m['octree_base']['update_ms']):.2f}× | {x['voxel_ms']:.2f} | "
-                  f"{x['knn_ms']:.2f} | {x['bytes_per_point']:.1f} |")
+        print(f"\n### The paper's {workload} workload\n")
+        print("| sequence | eco update ms | eco_exact | octree_base | ioctree_target | ioctree_global | nanoflann | "
+              "pcl_octree | octree_base × eco | eco_exact × octree_base | ioctree_target × eco | "
+              "eco KNN × nanoflann | eco B/pt |\n|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
+        base, exact, target, knn, bpp = [], [], [], [], []
+        for seq in paper_sequences():
+            m = load(f"{seq}-paper-{workload}")
+            e = m["eco"]
+            base.append(ratio(m["octree_base"]["update_ms"], e["update_ms"]))
+            exact.append(ratio(m["eco_exact"]["update_ms"], m["octree_base"]["update_ms"]))
+            target.append(ratio(m["ioctree_target"]["update_ms"], e["update_ms"]))
+            knn.append(ratio(e["knn_ms"], m["nanoflann"]["knn_ms"]))
+            bpp.append(e["bytes_per_point"])
+            times = " | ".join(f"{m[n]['update_ms']:.2f}" for n in
+                               ("eco_exact", "octree_base", "ioctree_target", "ioctree_global", "nanoflann", "pcl_octree"))
+            print(f"| {label(seq)} | {e['update_ms']:.2f} | {times} | {base[-1]:.2f}× | {exact[-1]:.2f}× | "
+                  f"{target[-1]:.2f}× | {knn[-1]:.2f}× | {bpp[-1]:.1f} |")
+        print("\n| goal | line | measured (sequences in the table's order) | verdict |\n|---|--:|---|---|")
+        goal_row("octree_base update × eco", base, paper_goals[workload], False)
+        if workload == "static":
+            goal_row("ioctree_target update × eco", target, 15.0, False)
+        goal_row("eco KNN × nanoflann", knn, 1.0, True)
+        goal_row("bytes a held point", bpp, 24, True, unit=" B")
+        print(f"\neco_exact × octree_base (the paper's own algorithm): {', '.join(f'{v:.2f}×' for v in exact)}")
 
+
+def paper_sequences():
+    names = sorted({d.rsplit("-paper-", 1)[0] for d in os.listdir(ROOT) if "-paper-" in d})
+    return [n for n in names if n != "sim"] + ["sim"]
 
 main()
