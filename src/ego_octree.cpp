@@ -4,6 +4,9 @@
 #include "clearing/clearing.hpp"
 #include "core/invariants.hpp"
 #include "core/tree.hpp"
+#include "persist/byte_stream.hpp"
+#include "persist/map_codec.hpp"
+#include "persist/map_file.hpp"
 #include "query/frames.hpp"
 #include "query/queries.hpp"
 #include "update/stages.hpp"
@@ -15,6 +18,8 @@ namespace eco {
 EgoOctree::EgoOctree(const Config& config)
     : tree_(std::make_unique<detail::Tree>(config)),
       clearing_(config.clearing.enabled ? std::make_unique<detail::ClearingState>() : nullptr) {}
+EgoOctree::EgoOctree(std::unique_ptr<detail::Tree> tree, std::unique_ptr<detail::ClearingState> clearing)
+    : tree_(std::move(tree)), clearing_(std::move(clearing)) {}
 EgoOctree::~EgoOctree() = default;
 EgoOctree::EgoOctree(EgoOctree&&) noexcept = default;
 EgoOctree& EgoOctree::operator=(EgoOctree&&) noexcept = default;
@@ -52,6 +57,22 @@ Stats EgoOctree::stats() const {
   Stats s = detail::tree_stats(*tree_);
   if (clearing_) s.bytes += clearing_->bytes();
   return s;
+}
+
+// --- save and load (src/persist) --------------------------------------------------------------
+
+void EgoOctree::save(const std::string& path) const {
+  detail::write_replacing(path, detail::encode_map(*tree_, clearing_.get()));
+}
+
+EgoOctree EgoOctree::load(const std::string& path) {
+  const std::string bytes = detail::read_whole_file(path);
+  try {
+    detail::DecodedMap map = detail::decode_map(bytes);
+    return EgoOctree(std::move(map.tree), std::move(map.clearing));
+  } catch (const detail::ByteError& e) {
+    throw std::runtime_error(path + ": byte " + std::to_string(e.offset) + ": " + e.what());
+  }
 }
 
 // --- the update (src/update) ------------------------------------------------------------------

@@ -123,12 +123,28 @@ class EgoOctree {
   /// Updates taken so far.
   [[nodiscard]] std::uint32_t frame_count() const;
 
+  /// Writes the whole state needed to go on exactly — configuration, pose, precision origin,
+  /// frame counter and clock, every held point with its ids and attributes, and free-space
+  /// clearing's last range image — to the file `path` (docs/map-format.md). The file is written
+  /// beside `path` and renamed over it once whole and flushed to the disk, so a save that fails
+  /// (a full disk, no permission) leaves any earlier file at `path` as it was. Throws
+  /// std::runtime_error naming the path and the reason. A const call: it may run beside queries.
+  void save(const std::string& path) const;
+  /// The tree saved at `path`: it answers every query as the saved one did and, fed the same
+  /// next frames, stays identical to it (last_update() starts empty). Throws std::runtime_error
+  /// naming the path and the byte offset of the first part that does not make a map — a wrong
+  /// magic or version, a checksum mismatch, a truncated file, a value out of range — and nothing
+  /// is loaded.
+  [[nodiscard]] static EgoOctree load(const std::string& path);
+
   /// Checks every structural invariant (bounds, counts, cells, parent links); returns an empty
   /// string when all hold, else a description of the first violation. O(points); for tests and
   /// for users who want to check a map.
   [[nodiscard]] std::string check_invariants() const;
 
  private:
+  EgoOctree(std::unique_ptr<detail::Tree> tree, std::unique_ptr<detail::ClearingState> clearing);
+
   std::unique_ptr<detail::Tree> tree_;
   std::unique_ptr<detail::ClearingState> clearing_;  // free-space clearing's, while Config::clearing is on
   UpdateStats last_update_;

@@ -57,4 +57,25 @@ Motion next_motion(const Eigen::Isometry3d& pose, const Motion& last, double box
   return m;
 }
 
+std::pair<Cell, Lattice> root_placement(const Config& config, const Motion& motion) {
+  Lattice lattice;
+  lattice.max_depth = config.max_depth();
+  Cell cell;
+  const int depth = lattice.max_depth;
+  if (config.recentring == Recentring::Quantised) {
+    const int k = int(config.quantum_levels);
+    const double q = config.quantum();
+    lattice.unit = std::ldexp(q, k - depth);
+    for (int a = 0; a < 3; ++a) {
+      lattice.origin[std::size_t(a)] = -motion.anchor[a];
+      const std::int64_t m = std::llround(motion.pose.translation()[a] / q);
+      cell.lo[std::size_t(a)] = (m - (std::int64_t{1} << (k - 1))) * (std::int64_t{1} << (depth - k));
+    }
+  } else {
+    lattice.unit = std::ldexp(config.box_side, -depth);
+    lattice.origin = motion.box.lo;
+  }
+  return {cell, lattice};
+}
+
 }  // namespace eco::detail

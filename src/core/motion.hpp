@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <utility>
 
 namespace eco::detail {
 
@@ -90,5 +91,10 @@ Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eige
 Motion next_motion(const Eigen::Isometry3d& pose, const Motion& last, double box_side,
                    bool moves_origin = true,
                    double scan_latest = -std::numeric_limits<double>::infinity());
+
+/// Where the root cell and the lattice lie for `motion` (stage 3 puts them there; a tree at rest
+/// has them there). Quantised: the root moves in whole quanta on the world lattice. Exact: the
+/// lattice's origin is the box's lower corner.
+std::pair<Cell, Lattice> root_placement(const Config& config, const Motion& motion);
 
 }  // namespace eco::detail

@@ -108,20 +108,15 @@ class PointStore {
   /// store) to the block at `link`, as append() does.
   void append_picked(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const PointSpan& source,
                      const std::uint32_t* picked, std::uint32_t n, std::uint32_t room = 0) {
-    if (n == 0) return;
-    reserve(link, owner, count, count + n, room);
-    const Block b = block(link);
-    const auto gather = [&](auto* to, const auto* from) {
-      if (from == nullptr) return;  // a column not kept
-      for (std::uint32_t i = 0; i < n; ++i) to[count + i] = from[picked[i]];
-    };
-    gather(b.x, source.x);
-    gather(b.x + b.capacity, source.y);
-    gather(b.x + 2 * std::size_t(b.capacity), source.z);
-    gather(b.stamps, source.stamps);
-    gather(b.ids, source.ids);
-    gather(b.intensities, source.intensities);
-    gather(b.times, source.times);
+    append_columns(link, owner, count, source, n, room, [&](auto* to, const auto* from) {
+      for (std::uint32_t i = 0; i < n; ++i) to[i] = from[picked[i]];
+    });
+  }
+  /// Appends every point of `source` (read elsewhere, with every column this store keeps) to the
+  /// block at `link`, as append() does.
+  void append_span(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const PointSpan& source) {
+    append_columns(link, owner, count, source, source.size, 0,
+                   [&](auto* to, const auto* from) { std::copy_n(from, source.size, to); });
   }
 
   /// The `count` points of the block at `link`.
@@ -314,6 +309,25 @@ class PointStore {
     b.intensities = next(columns_.intensities, b.intensities);
     b.times = next(columns_.times, b.times);
     return b;
+  }
+  /// append_picked's and append_span's common part: makes room for `n` more points and calls
+  /// copy(to, from) for each column `source` has, `to` the block's column past its `count` points.
+  template <class Copy>
+  void append_columns(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const PointSpan& source,
+                      std::uint32_t n, std::uint32_t room, Copy&& copy) {
+    if (n == 0) return;
+    reserve(link, owner, count, count + n, room);
+    const Block b = block(link);
+    const auto column = [&](auto* to, const auto* from) {
+      if (from != nullptr) copy(to + count, from);  // null: a column not kept
+    };
+    column(b.x, source.x);
+    column(b.x + b.capacity, source.y);
+    column(b.x + 2 * std::size_t(b.capacity), source.z);
+    column(b.stamps, source.stamps);
+    column(b.ids, source.ids);
+    column(b.intensities, source.intensities);
+    column(b.times, source.times);
   }
   static StoredPoint read(const Block& b, std::uint32_t i) {
     return {{b.x[i], b.x[b.capacity + i], b.x[2 * std::size_t(b.capacity) + i]},

@@ -29,6 +29,7 @@
 namespace eco::detail {
 
 class Subcells;
+struct TreeParts;
 
 /// Nodes at one depth, indexed by their cell: where insertion starts instead of the root
 /// (the paper's movement-aware start depth; in Quantised mode depth k, a direct lattice lookup).
@@ -53,6 +54,10 @@ enum class Verdict { KeepAll, DropAll, LookInside };
 class Tree {
  public:
   explicit Tree(const Config& config);
+  /// The tree `parts` describe (core/tree_parts.hpp), node for node and point for point, under
+  /// `config`. Throws std::invalid_argument naming the first part that does not fit (a count past
+  /// the points left, a point outside its leaf's cell, an empty node, a broken invariant).
+  Tree(const Config& config, const TreeParts& parts);
 
   // --- reading --------------------------------------------------------------------------------
   [[nodiscard]] const Config& config() const { return cfg_; }

@@ -1,0 +1,324 @@
+// The map file's sections, in the order docs/map-format.md lists them.
+
+#include "persist/map_codec.hpp"
+
+#include "core/tree_parts.hpp"
+#include "persist/byte_stream.hpp"
+#include "update/stages.hpp"
+
+#include <zlib.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace eco::detail {
+namespace {
+
+constexpr std::string_view kMagic{"ECO map\n", 8};
+constexpr std::size_t kHeaderBytes = 8 + 4 + 8;  // magic, version, payload length
+constexpr std::size_t kChecksumBytes = 4;
+
+std::uint32_t checksum(std::string_view bytes) {
+  uLong crc = crc32(0L, Z_NULL, 0);
+  // zlib takes at most 4 GB a call
+  for (std::size_t at = 0; at < bytes.size(); at += std::size_t{1} << 30) {
+    const std::size_t n = std::min(bytes.size() - at, std::size_t{1} << 30);
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(bytes.data() + at), uInt(n));
+  }
+  return std::uint32_t(crc);
+}
+
+// --- the configuration --------------------------------------------------------------------------
+
+void put_config(ByteWriter& out, const Config& c) {
+  out.put(c.box_side);
+  out.put(c.leaf_capacity);
+  out.put(c.min_cell_size);
+  out.put(std::uint8_t(c.recentring));
+  out.put(c.quantum_levels);
+  out.put(std::uint8_t(c.insert_policy));
+  out.put(c.density_cap.cell_size);
+  out.put(c.density_cap.max_points);
+  out.put(c.max_age_frames);
+  out.put(c.max_age_seconds);
+  out.put(std::uint8_t(c.attributes.ids));
+  out.put(std::uint8_t(c.attributes.intensity));
+  out.put(std::uint8_t(c.attributes.time));
+  out.put(std::uint8_t(c.clearing.enabled));
+  out.put(c.clearing.margin);
+  out.put(std::uint8_t(c.clearing.arrivals));
+  out.put(c.sensor.vertical_fov_min);
+  out.put(c.sensor.vertical_fov_max);
+  out.put(c.sensor.vertical_resolution);
+  out.put(c.sensor.horizontal_resolution);
+  out.put(c.sensor.max_range);
+  out.put(c.voxel_size);
+}
+
+/// A byte that must be 0 or 1 (a flag, or one of two enumerators).
+bool get_flag(ByteReader& in, const char* what) {
+  const std::size_t at = in.offset();
+  const auto v = in.get<std::uint8_t>(what);
+  if (v > 1) ByteReader::fail_at(at, std::string(what) + " = " + std::to_string(v) + " is neither 0 nor 1");
+  return v == 1;
+}
+
+Config get_config(ByteReader& in) {
+  const std::size_t start = in.offset();
+  Config c;
+  c.box_side = in.get<double>("box_side");
+  c.leaf_capacity = in.get<std::uint32_t>("leaf_capacity");
+  c.min_cell_size = in.get<double>("min_cell_size");
+  c.recentring = get_flag(in, "recentring") ? Recentring::Exact : Recentring::Quantised;
+  c.quantum_levels = in.get<std::uint32_t>("quantum_levels");
+  c.insert_policy = get_flag(in, "insert_policy") ? InsertPolicy::AllInBox : InsertPolicy::ShiftInOnly;
+  c.density_cap.cell_size = in.get<double>("density_cap.cell_size");
+  c.density_cap.max_points = in.get<std::uint32_t>("density_cap.max_points");
+  c.max_age_frames = in.get<std::uint32_t>("max_age_frames");
+  c.max_age_seconds = in.get<double>("max_age_seconds");
+  c.attributes.ids = get_flag(in, "attributes.ids");
+  c.attributes.intensity = get_flag(in, "attributes.intensity");
+  c.attributes.time = get_flag(in, "attributes.time");
+  c.clearing.enabled = get_flag(in, "clearing.enabled");
+  c.clearing.margin = in.get<double>("clearing.margin");
+  c.clearing.arrivals = get_flag(in, "clearing.arrivals");
+  c.sensor.vertical_fov_min = in.get<double>("sensor.vertical_fov_min");
+  c.sensor.vertical_fov_max = in.get<double>("sensor.vertical_fov_max");
+  c.sensor.vertical_resolution = in.get<double>("sensor.vertical_resolution");
+  c.sensor.horizontal_resolution = in.get<double>("sensor.horizontal_resolution");
+  c.sensor.max_range = in.get<double>("sensor.max_range");
+  c.voxel_size = in.get<double>("voxel_size");
+  try {
+    c.validate();
+  } catch (const std::invalid_argument& e) {
+    ByteReader::fail_at(start, std::string("configuration: ") + e.what());
+  }
+  return c;
+}
+
+// --- the frame's motion -------------------------------------------------------------------------
+
+void put_pose(ByteWriter& out, const Eigen::Isometry3d& pose) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) out.put(pose.matrix()(r, c));
+  }
+}
+
+Eigen::Isometry3d get_pose(ByteReader& in) {
+  const std::size_t at = in.offset();
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) pose.matrix()(r, c) = in.get<double>("pose");
+  }
+  try {
+    check_pose(pose, "pose");
+  } catch (const std::invalid_argument& e) {
+    ByteReader::fail_at(at, e.what());
+  }
+  return pose;
+}
+
+/// The motion a tree keeps between updates: its pose, precision origin, frame and clock (what
+/// the next update starts from; the box follows from them).
+void put_motion(ByteWriter& out, const Motion& m) {
+  out.put(m.frame);
+  if (m.frame == 0) return;
+  put_pose(out, m.pose);
+  for (int a = 0; a < 3; ++a) out.put(m.anchor[a]);
+  out.put(m.clock.latest);
+  out.put(m.clock.origin);
+}
+
+Motion get_motion(ByteReader& in, const Config& config) {
+  Motion m;
+  m.frame = in.get<std::uint32_t>("frame");
+  if (m.frame == 0) return m;
+  m.pose = get_pose(in);
+  const std::size_t anchor_at = in.offset();
+  for (int a = 0; a < 3; ++a) m.anchor[a] = in.get<double>("precision origin");
+  const bool steps = (m.anchor.array() / 1024.0).round().matrix() * 1024.0 == m.anchor;
+  if (!m.anchor.allFinite() || !steps ||
+      precision_origin_for(m.pose.translation(), m.anchor, false) != m.anchor) {
+    ByteReader::fail_at(anchor_at, "precision origin: not a multiple of 1024 m near the pose");
+  }
+  const std::size_t clock_at = in.offset();
+  m.clock.latest = in.get<double>("clock.latest");
+  m.clock.origin = in.get<double>("clock.origin");
+  const bool none = m.clock.latest == -std::numeric_limits<double>::infinity();
+  if (!(none ? m.clock.origin == 0.0
+             : std::isfinite(m.clock.latest) && std::isfinite(m.clock.origin) &&
+                   std::floor(m.clock.origin / 64.0) * 64.0 == m.clock.origin)) {
+    ByteReader::fail_at(clock_at, "clock: its latest time and origin do not fit together");
+  }
+  m.box = ego_box(m.pose.translation(), m.anchor, config.box_side);
+  return m;
+}
+
+// --- the tree -----------------------------------------------------------------------------------
+
+void put_tree(ByteWriter& out, const TreeParts& parts) {
+  out.put(std::uint64_t(parts.nodes.size()));
+  for (const TreeParts::NodeEntry& n : parts.nodes) {
+    out.put(std::uint8_t(n.leaf ? 0 : 1));
+    if (n.leaf) {
+      out.put(n.count);
+    } else {
+      out.put(n.children);
+    }
+  }
+  const TreeParts::Columns& c = parts.points;
+  out.put(std::uint64_t(c.x.size()));
+  const auto column = [&](const auto& values) {
+    out.put_bytes({reinterpret_cast<const char*>(values.data()), values.size() * sizeof(values[0])});
+  };
+  column(c.x);
+  column(c.y);
+  column(c.z);
+  column(c.stamps);
+  column(c.ids);
+  column(c.intensities);
+  column(c.times);
+}
+
+std::unique_ptr<Tree> get_tree(ByteReader& in, const Config& config, const Motion& motion) {
+  TreeParts parts;
+  parts.motion = motion;
+  const std::size_t nodes_at = in.offset();
+  const auto m = in.get<std::uint64_t>("node count");
+  if (m > in.left() / 2) ByteReader::fail_at(nodes_at, "node count " + std::to_string(m) + ": past the end of the file");
+  parts.nodes.resize(m);
+  for (TreeParts::NodeEntry& n : parts.nodes) {
+    n.leaf = !get_flag(in, "node kind");
+    if (n.leaf) {
+      n.count = in.get<std::uint32_t>("leaf point count");
+    } else {
+      n.children = in.get<std::uint8_t>("inner node's children");
+    }
+  }
+  const std::size_t points_at = in.offset();
+  const auto n = in.get<std::uint64_t>("point count");
+  const Columns kept{config.max_age_frames > 0, config.attributes.ids, config.attributes.intensity,
+                     config.attributes.time};
+  const std::size_t per_point = 12 + 4 * std::size_t(kept.count());
+  if (n > in.left() / per_point) ByteReader::fail_at(points_at, "point count " + std::to_string(n) + ": past the end of the file");
+  TreeParts::Columns& c = parts.points;
+  const auto column = [&](auto& values, bool is_kept, const char* what) {
+    if (is_kept) in.get_values(values, n, what);
+  };
+  column(c.x, true, "x");
+  column(c.y, true, "y");
+  column(c.z, true, "z");
+  column(c.stamps, kept.stamps, "stamps");
+  column(c.ids, kept.ids, "ids");
+  column(c.intensities, kept.intensities, "intensities");
+  column(c.times, kept.times, "times");
+  try {
+    return std::make_unique<Tree>(config, parts);
+  } catch (const std::invalid_argument& e) {
+    ByteReader::fail_at(nodes_at, std::string("tree: ") + e.what());
+  }
+}
+
+// --- free-space clearing ------------------------------------------------------------------------
+
+/// The last update's range image (its frame and pose are the tree's) and the arrivals that leave
+/// at the next update.
+void put_clearing(ByteWriter& out, const ClearingState& state, const Tree& tree) {
+  std::size_t pixels = 0;
+  if (state.image.frame != 0) {
+    const PixelLookup lookup(tree.config().sensor);
+    pixels = std::size_t(lookup.rows()) * std::size_t(lookup.columns());
+  }
+  out.put(std::uint64_t(pixels));
+  out.put_bytes({reinterpret_cast<const char*>(state.image.storage.data()), pixels * sizeof(double)});
+  out.put(std::uint64_t(state.leaving.size()));
+  for (const StoredPoint& s : state.leaving) {
+    for (const float v : s.p) out.put(v);
+    out.put(s.stamp);
+    out.put(s.id);
+    out.put(s.intensity);
+    out.put(s.time);
+  }
+}
+
+std::unique_ptr<ClearingState> get_clearing(ByteReader& in, const Tree& tree) {
+  auto state = std::make_unique<ClearingState>();
+  const std::size_t image_at = in.offset();
+  const PixelLookup lookup(tree.config().sensor, state->pixel_tables);
+  const std::size_t expected =
+      tree.motion().frame == 0 ? 0 : std::size_t(lookup.rows()) * std::size_t(lookup.columns());
+  state->image.storage = in.get_array<double>("range image");
+  if (state->image.storage.size() != expected) {
+    ByteReader::fail_at(image_at, "range image of " + std::to_string(state->image.storage.size()) +
+                                      " pixels, where the sensor model has " + std::to_string(expected));
+  }
+  if (expected > 0) {
+    state->image.frame = tree.motion().frame;
+    state->image.pose = tree.motion().pose;
+  }
+  const std::size_t leaving_at = in.offset();
+  const auto n = in.get<std::uint64_t>("arrivals count");
+  if (n > in.left() / 28) ByteReader::fail_at(leaving_at, "arrivals count " + std::to_string(n) + ": past the end of the file");
+  state->leaving.resize(n);
+  for (StoredPoint& s : state->leaving) {
+    for (float& v : s.p) v = in.get<float>("arrival");
+    s.stamp = in.get<std::uint32_t>("arrival");
+    s.id = in.get<std::uint32_t>("arrival");
+    s.intensity = in.get<float>("arrival");
+    s.time = in.get<float>("arrival");
+  }
+  return state;
+}
+
+}  // namespace
+
+std::string encode_map(const Tree& tree, const ClearingState* clearing) {
+  ByteWriter out;
+  out.put_bytes(kMagic);
+  out.put(kMapFileVersion);
+  out.put(std::uint64_t(0));  // the payload's length, once known
+  put_config(out, tree.config());
+  put_motion(out, tree.motion());
+  put_tree(out, parts_of(tree));
+  if (tree.config().clearing.enabled) put_clearing(out, *clearing, tree);
+  std::string& bytes = out.bytes();
+  const std::uint64_t payload = bytes.size() - kHeaderBytes;
+  std::memcpy(bytes.data() + 12, &payload, sizeof(payload));
+  const std::uint32_t crc = checksum(bytes);
+  bytes.append(reinterpret_cast<const char*>(&crc), sizeof(crc));
+  return std::move(bytes);
+}
+
+DecodedMap decode_map(std::string_view bytes) {
+  ByteReader header(bytes);
+  for (const char expected : kMagic) {
+    if (header.get<char>("magic") != expected) ByteReader::fail_at(0, "not a map file (wrong magic)");
+  }
+  const auto version = header.get<std::uint32_t>("version");
+  if (version != kMapFileVersion) {
+    ByteReader::fail_at(8, "version " + std::to_string(version) + "; this library reads version " +
+                               std::to_string(kMapFileVersion));
+  }
+  const auto payload = header.get<std::uint64_t>("payload length");
+  const std::size_t held = bytes.size() - std::min(bytes.size(), kHeaderBytes + kChecksumBytes);
+  if (payload != held) {
+    ByteReader::fail_at(12, "payload of " + std::to_string(payload) + " bytes, where the file holds " +
+                                std::to_string(held) + " (truncated or extended)");
+  }
+  const std::size_t end = kHeaderBytes + held;
+  std::uint32_t stored = 0;
+  std::memcpy(&stored, bytes.data() + end, sizeof(stored));
+  if (checksum(bytes.substr(0, end)) != stored) ByteReader::fail_at(end, "checksum mismatch: the file is corrupted");
+
+  ByteReader in(bytes.substr(0, end), kHeaderBytes);
+  const Config config = get_config(in);
+  const Motion motion = get_motion(in, config);
+  DecodedMap map;
+  map.tree = get_tree(in, config, motion);
+  if (config.clearing.enabled) map.clearing = get_clearing(in, *map.tree);
+  if (in.left() != 0) in.fail(std::to_string(in.left()) + " bytes past the map");
+  return map;
+}
+
+}  // namespace eco::detail

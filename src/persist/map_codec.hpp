@@ -1,0 +1,29 @@
+#pragma once
+// A map as the bytes of a map file (docs/map-format.md) and back: the configuration, the frame's
+// motion, the tree's nodes and points, and free-space clearing's state while it is on.
+
+#include "clearing/clearing.hpp"
+#include "core/tree.hpp"
+
+#include <memory>
+#include <string>
+#include <string_view>
+
+namespace eco::detail {
+
+/// The version this library writes and reads.
+inline constexpr std::uint32_t kMapFileVersion = 1;
+
+/// The file's bytes for `tree` and, while clearing is on, its `clearing` state.
+std::string encode_map(const Tree& tree, const ClearingState* clearing);
+
+struct DecodedMap {
+  std::unique_ptr<Tree> tree;
+  std::unique_ptr<ClearingState> clearing;  ///< null while clearing is off
+};
+/// The map in `bytes`. Throws ByteError (persist/byte_stream.hpp) naming the first byte that does
+/// not make a map: a wrong magic or version, a checksum that does not match, a truncated
+/// section, a value out of range, a tree whose parts do not fit together.
+DecodedMap decode_map(std::string_view bytes);
+
+}  // namespace eco::detail
