@@ -1,6 +1,7 @@
 #include <eco/config.hpp>
 #include <eco/config_fields.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -30,9 +31,10 @@ double Config::quantum() const {
   // q * 2^k = L + q exactly would let the box touch the root's walls when the sensor sits on a
   // half-quantum tie; a relative 1e-9 margin keeps it strictly inside despite rounding.
   const double least = box_side / double((1u << quantum_levels) - 1u) * (1.0 + 1e-9);
-  if (!(voxel_size > 0.0)) return least;
+  if (!(voxel_size > 0.0) || !(least > 0.0)) return least;  // (a box_side too small leaves none: validate refuses it)
   // the smallest voxel_size * 2^j that is at least `least`: cells below depth k are then voxels
-  int j = int(std::ceil(std::log2(least / voxel_size)));
+  // (j clamped: a voxel_size near the smallest doubles makes the quotient infinite)
+  int j = int(std::clamp(std::ceil(std::log2(least / voxel_size)), -1100.0, 1100.0));
   while (std::ldexp(voxel_size, j) < least) ++j;
   while (std::ldexp(voxel_size, j - 1) >= least) --j;
   return std::ldexp(voxel_size, j);
@@ -50,7 +52,8 @@ int SensorModel::rows() const {
 int SensorModel::columns() const { return int(std::ceil(360.0 / horizontal_resolution)); }
 
 int Config::max_depth() const {
-  return int(std::floor(std::log2(root_side() / min_cell_size)));
+  // clamped: a min_cell_size near the smallest doubles makes the quotient infinite (validate refuses it)
+  return int(std::clamp(std::floor(std::log2(root_side() / min_cell_size)), -1.0, 1100.0));
 }
 
 void Config::validate() const {

@@ -13,13 +13,16 @@
 #include <shared_mutex>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <thread>
+#include <utility>
 
 namespace eco::python {
 namespace {
 
 struct SharedTree {
   explicit SharedTree(const Config& config) : tree(config) {}
+  explicit SharedTree(EgoOctree loaded) : tree(std::move(loaded)) {}
   EgoOctree tree;
   mutable std::shared_mutex mutex;
 };
@@ -386,6 +389,29 @@ such pairs. workers: as for knn(). return_ids: (sq_dists, ids) pairs instead, as
           py::kw_only(), py::arg("attributes") = false,
           "Every held point, world frame, as an (N, 3) float64 array in no particular order. "
           "attributes=True: (points, attributes) as box() gives them.")
+      .def(
+          "save",
+          [](const SharedTree& self, const py::object& path) {
+            const std::string file = py::str(py::module_::import("os").attr("fspath")(path));
+            reading(self, [&](const EgoOctree& t) { t.save(file); });
+          },
+          py::arg("path"),
+          "Writes the whole map (configuration, pose, origins, frame counter and clock, the held "
+          "points with their attributes, clearing's state) to path (str or os.PathLike; "
+          "docs/map-format.md), by way of a temporary file renamed over it: a save that fails leaves "
+          "an earlier file at path as it was. Raises RuntimeError naming the path and the reason.")
+      .def_static(
+          "load",
+          [](const py::object& path) {
+            const std::string file = py::str(py::module_::import("os").attr("fspath")(path));
+            py::gil_scoped_release no_gil;
+            return std::make_unique<SharedTree>(EgoOctree::load(file));
+          },
+          py::arg("path"),
+          "The map saved at path: it answers as the saved tree did and, fed the same next frames, "
+          "stays identical to it. Raises RuntimeError naming the path and the byte offset of what "
+          "is not a map (wrong magic or version, checksum mismatch, truncated file); nothing is "
+          "loaded.")
       .def("stats", read<&EgoOctree::stats>(), "What the tree holds now (a Stats; O(nodes)).")
       .def("check_invariants", read<&EgoOctree::check_invariants>(),
            "Checks every structural invariant; returns '' when all hold, else the first violation.")

@@ -38,6 +38,7 @@ class EcoMethod final : public Method {
   [[nodiscard]] std::string check_invariants() const override { return tree_.check_invariants(); }
   [[nodiscard]] const Config& config() const override { return tree_.config(); }
   [[nodiscard]] const Eigen::Isometry3d& pose() const override { return tree_.pose(); }
+  [[nodiscard]] const EgoOctree* ego_octree() const override { return &tree_; }
 
  private:
   std::string name_;

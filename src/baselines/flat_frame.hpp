@@ -46,7 +46,7 @@ class FlatFrame {
   Step advance(const Eigen::Isometry3d& world_T_sensor, const ScanView& scan) {
     UpdateStats stats = detail::begin_update(cfg_, world_T_sensor, scan);
     motion_ = detail::next_motion(world_T_sensor, motion_, cfg_.box_side);
-    density_grid_ = detail::ego_grid(motion_, cfg_.density_cap.cell_size);
+    density_grid_ = detail::ego_grid(motion_, cfg_.density_cap);
     if (motion_.origin_shift) density_.clear();  // the caller counts the re-expressed points anew
     return {stats, motion_.origin_shift, detail::admission(motion_, cfg_.insert_policy)};
   }

@@ -117,6 +117,15 @@ json summary_json(const BenchRun& run, const std::vector<MethodSummary>& summari
                        {"nodes", s.nodes},
                        {"chamfer_m", number(s.chamfer_m)}};
   }
+  for (const MethodRun& m : run.methods) {
+    if (!m.map_file) continue;
+    const MapFileTiming& f = *m.map_file;
+    methods[m.name].update({{"map_save_ms", f.save_ms},
+                            {"map_load_ms", f.load_ms},
+                            {"map_raw_ms", f.raw_ms},
+                            {"map_file_bytes", f.file_bytes},
+                            {"map_point_bytes", f.point_bytes}});
+  }
   return {{"workload", to_string(run.options.workload)}, {"source", run.source}, {"methods", methods}};
 }
 
@@ -174,6 +183,22 @@ std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>
   for (const MethodSummary& m : summaries) {
     s << "| " << m.name << " | " << fixed(m.update_faults, 0) << " | " << fixed(m.caller_ms, 3) << " | "
       << fixed(m.caller_faults, 0) << " | " << ratio(&m, &MethodSummary::caller_ms, pass) << " |\n";
+  }
+  bool header = false;
+  for (const MethodRun& m : run.methods) {
+    if (!m.map_file) continue;
+    const MapFileTiming& f = *m.map_file;
+    if (!header) {
+      s << "\nThe map file after the last frame (EgoOctree::save, flushed to the disk, then load; against writing, "
+           "flushing and reading the same bytes raw; best of 3):\n\n"
+           "| method | file MB | file / the points' coordinates and attributes | save ms | load ms | raw ms | "
+           "(save + load) / raw |\n|---|--:|--:|--:|--:|--:|--:|\n";
+      header = true;
+    }
+    s << "| " << m.name << " | " << fixed(double(f.file_bytes) / 1e6, 2) << " | "
+      << (f.point_bytes ? fixed(double(f.file_bytes) / double(f.point_bytes), 2) + "×" : std::string("–")) << " | "
+      << fixed(f.save_ms, 2) << " | " << fixed(f.load_ms, 2) << " | " << fixed(f.raw_ms, 2) << " | "
+      << fixed((f.save_ms + f.load_ms) / f.raw_ms, 2) << "× |\n";
   }
   if (const MethodSummary* clearing = find(summaries, "eco_clearing")) {
     s << "\nFree-space clearing: eco_clearing update / eco " << ratio(clearing, &MethodSummary::update_ms, eco)

@@ -45,7 +45,7 @@ BenchRun run_bench(const BenchOptions& given, const Progress& progress) {
   run.chamfer_reference = reference;
   for (const std::string& name : options.methods) {
     methods.push_back(baselines::make_method(name, options.config));
-    run.methods.push_back({name, {}});
+    run.methods.push_back({name, {}, std::nullopt});
   }
   OpenedWorkload workload = open_workload(options, progress.status);
   run.source = workload.source;
@@ -121,6 +121,12 @@ BenchRun run_bench(const BenchOptions& given, const Progress& progress) {
       }
     }
     progress.frame(t + 1, total, run);
+  }
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    if (const EgoOctree* tree = methods[m]->ego_octree(); tree != nullptr && total > 0) {
+      progress.status("timing " + methods[m]->name() + "'s map file");
+      run.methods[m].map_file = time_map_file(*tree);
+    }
   }
   run.seconds = std::chrono::duration<double>(Clock::now() - started).count() + (sink < 0 ? 1 : 0);
   return run;

@@ -3,8 +3,10 @@
 // gets frame t+1, so machine drift hits all alike), and records what the paper measures.
 
 #include "bench/bench_options.hpp"
+#include "bench/map_file_timing.hpp"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,7 @@ struct FrameRecord {
 struct MethodRun {
   std::string name;
   std::vector<FrameRecord> frames;
+  std::optional<MapFileTiming> map_file;  ///< after the last frame, for the methods that are an EgoOctree
 };
 
 struct BenchRun {

@@ -68,9 +68,12 @@ inline std::array<float, 3> rebased(const std::array<float, 3>& p, const Eigen::
   return {float(double(p[0]) + shift[0]), float(double(p[1]) + shift[1]), float(double(p[2]) + shift[2])};
 }
 
-/// The world grid of side `size` seen from `m`'s precision origin, its guesses made in single
-/// precision around the ego box (the points a frame takes in or drops lie in it or next to it).
-inline WorldGrid ego_grid(const Motion& m, double size) {
+/// The density cap's cells (`cap`'s world grid) seen from `m`'s precision origin, its guesses
+/// made in single precision around the ego box (the points a frame takes in or drops lie in it
+/// or next to it). A cap that is off has no cells: a placeholder grid, whatever its cell size.
+inline WorldGrid ego_grid(const Motion& m, const DensityCap& cap) {
+  if (!cap.enabled()) return WorldGrid({0, 0, 0}, 1.0);
+  const double size = cap.cell_size;
   std::array<double, 3> centre{};
   double reach = 0.0;
   for (int a = 0; a < 3; ++a) {

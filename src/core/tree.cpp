@@ -33,7 +33,7 @@ std::size_t Tree::bytes() const {
 void Tree::set_motion(const Motion& m) {
   motion_ = m;
   age_ = AgeLimit::of(cfg_, m);
-  density_grid_ = ego_grid(m, cfg_.density_cap.cell_size);
+  density_grid_ = ego_grid(m, cfg_.density_cap);
   if (m.clock.shift) shift_times(*m.clock.shift);  // in place, nothing moves
 }
 

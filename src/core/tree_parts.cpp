@@ -5,6 +5,7 @@
 #include "core/invariants.hpp"
 #include "core/tree.hpp"
 
+#include <cassert>
 #include <stdexcept>
 #include <string>
 
@@ -72,7 +73,7 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
   if (parts.nodes.empty()) refuse("a tree that has taken a frame has no root");
   motion_ = parts.motion;
   age_ = AgeLimit::of(cfg_, motion_);
-  density_grid_ = ego_grid(motion_, cfg_.density_cap.cell_size);
+  density_grid_ = ego_grid(motion_, cfg_.density_cap);
   std::tie(root_cell_, lattice_) = root_placement(cfg_, motion_);
 
   std::size_t next_node = 0;
@@ -88,13 +89,18 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
         refuse("node " + std::to_string(index) + ": a leaf of " + std::to_string(entry.count) + " points past the " +
                std::to_string(n - next_point) + " points left");
       }
+      if (entry.count > cfg_.leaf_capacity && cell.depth < lattice_.max_depth) {
+        refuse("node " + std::to_string(index) + ": a leaf of " + std::to_string(entry.count) +
+               " points above the deepest level, where N_max = " + std::to_string(cfg_.leaf_capacity));
+      }
       const auto at = [&](const auto& column) { return column.empty() ? nullptr : column.data() + next_point; };
       const PointSpan span{at(c.x),   at(c.y),  at(c.z),           at(c.stamps),
                            at(c.ids), at(c.intensities), at(c.times), entry.count};
       for (std::uint32_t i = 0; i < entry.count; ++i) {
-        if (!lattice_.contains(cell, std::array<float, 3>{span.x[i], span.y[i], span.z[i]})) {
+        const std::array<float, 3> p{span.x[i], span.y[i], span.z[i]};
+        if (!lattice_.contains(cell, p) || !motion_.box.contains(p[0], p[1], p[2])) {
           refuse("node " + std::to_string(index) + ": point " + std::to_string(next_point + i) +
-                 " lies outside its leaf's cell");
+                 " lies outside its leaf's cell or the ego box");
         }
       }
       Node& leaf = nodes_[id];
@@ -109,13 +115,18 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
       }
     }
     refit(id);
+    if (parent != kNone && nodes_[id].count == 0) refuse("node " + std::to_string(index) + ": an empty node");
+    if (!entry.leaf && parent != kNone && cell.depth >= min_leaf_depth_ && nodes_[id].count <= cfg_.leaf_capacity) {
+      refuse("node " + std::to_string(index) + ": an inner node of " + std::to_string(nodes_[id].count) +
+             " points, which would be a leaf");
+    }
     return id;
   };
   root_ = build(build, kNone, 0, root_cell_);
   if (next_node != parts.nodes.size()) refuse(std::to_string(parts.nodes.size() - next_node) + " nodes past the tree");
   if (next_point != n) refuse(std::to_string(n - next_point) + " points past the tree's leaves");
   if (cfg_.density_cap.enabled()) walk_points(root_, [&](const StoredPoint& s) { density_.add(density_key(s.p)); });
-  if (const std::string broken = check_tree(*this); !broken.empty()) refuse(broken);
+  assert(check_tree(*this).empty());  // every invariant, by the refusals above
 }
 
 }  // namespace eco::detail

@@ -56,7 +56,7 @@ class ByteReader {
     static_assert(std::is_arithmetic_v<T>);
     if (n > left() / sizeof(T)) fail(std::string(what) + ": the file ends inside its " + std::to_string(n) + " values");
     out.resize(n);
-    std::memcpy(out.data(), bytes_.data() + at_, n * sizeof(T));
+    if (n > 0) std::memcpy(out.data(), bytes_.data() + at_, n * sizeof(T));  // data() may be null when empty
     at_ += n * sizeof(T);
   }
   /// A count, then as many values.

@@ -99,23 +99,26 @@ Config get_config(ByteReader& in) {
 
 // --- the frame's motion -------------------------------------------------------------------------
 
-void put_pose(ByteWriter& out, const Eigen::Isometry3d& pose) {
+void put_pose(ByteWriter& out, const Eigen::Isometry3d& pose) {  // get_pose reads it
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 4; ++c) out.put(pose.matrix()(r, c));
   }
 }
 
-Eigen::Isometry3d get_pose(ByteReader& in) {
+/// A pose update() would take under `config`, within 1e9 m of the world's origin (where the
+/// lattice's integer cells stay far from overflowing).
+Eigen::Isometry3d get_pose(ByteReader& in, const Config& config) {
   const std::size_t at = in.offset();
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 4; ++c) pose.matrix()(r, c) = in.get<double>("pose");
   }
   try {
-    check_pose(pose, "pose");
+    check_update_arguments(pose, "pose", ScanView(), config);
   } catch (const std::invalid_argument& e) {
     ByteReader::fail_at(at, e.what());
   }
+  if (!(pose.translation().cwiseAbs().maxCoeff() < 1e9)) ByteReader::fail_at(at, "pose: farther than 1e9 m out");
   return pose;
 }
 
@@ -134,7 +137,7 @@ Motion get_motion(ByteReader& in, const Config& config) {
   Motion m;
   m.frame = in.get<std::uint32_t>("frame");
   if (m.frame == 0) return m;
-  m.pose = get_pose(in);
+  m.pose = get_pose(in, config);
   const std::size_t anchor_at = in.offset();
   for (int a = 0; a < 3; ++a) m.anchor[a] = in.get<double>("precision origin");
   const bool steps = (m.anchor.array() / 1024.0).round().matrix() * 1024.0 == m.anchor;
@@ -225,11 +228,8 @@ std::unique_ptr<Tree> get_tree(ByteReader& in, const Config& config, const Motio
 /// The last update's range image (its frame and pose are the tree's) and the arrivals that leave
 /// at the next update.
 void put_clearing(ByteWriter& out, const ClearingState& state, const Tree& tree) {
-  std::size_t pixels = 0;
-  if (state.image.frame != 0) {
-    const PixelLookup lookup(tree.config().sensor);
-    pixels = std::size_t(lookup.rows()) * std::size_t(lookup.columns());
-  }
+  const SensorModel& sensor = tree.config().sensor;
+  const std::size_t pixels = state.image.frame == 0 ? 0 : std::size_t(sensor.rows()) * std::size_t(sensor.columns());
   out.put(std::uint64_t(pixels));
   out.put_bytes({reinterpret_cast<const char*>(state.image.storage.data()), pixels * sizeof(double)});
   out.put(std::uint64_t(state.leaving.size()));
@@ -245,9 +245,8 @@ void put_clearing(ByteWriter& out, const ClearingState& state, const Tree& tree)
 std::unique_ptr<ClearingState> get_clearing(ByteReader& in, const Tree& tree) {
   auto state = std::make_unique<ClearingState>();
   const std::size_t image_at = in.offset();
-  const PixelLookup lookup(tree.config().sensor, state->pixel_tables);
-  const std::size_t expected =
-      tree.motion().frame == 0 ? 0 : std::size_t(lookup.rows()) * std::size_t(lookup.columns());
+  const SensorModel& sensor = tree.config().sensor;  // (the pixel lookup's tables are built when first used)
+  const std::size_t expected = tree.motion().frame == 0 ? 0 : std::size_t(sensor.rows()) * std::size_t(sensor.columns());
   state->image.storage = in.get_array<double>("range image");
   if (state->image.storage.size() != expected) {
     ByteReader::fail_at(image_at, "range image of " + std::to_string(state->image.storage.size()) +
@@ -274,13 +273,19 @@ std::unique_ptr<ClearingState> get_clearing(ByteReader& in, const Tree& tree) {
 }  // namespace
 
 std::string encode_map(const Tree& tree, const ClearingState* clearing) {
+  const TreeParts parts = parts_of(tree);
   ByteWriter out;
+  const std::size_t columns = 3 + std::size_t(!parts.points.stamps.empty()) + std::size_t(!parts.points.ids.empty()) +
+                              std::size_t(!parts.points.intensities.empty()) + std::size_t(!parts.points.times.empty());
+  const std::size_t image = clearing ? clearing->image.storage.size() * sizeof(double) : 0;
+  // room for it all at once: the points are most of it, and growing would copy them
+  out.bytes().reserve(1024 + 5 * parts.nodes.size() + 4 * columns * parts.points.x.size() + image);
   out.put_bytes(kMagic);
   out.put(kMapFileVersion);
   out.put(std::uint64_t(0));  // the payload's length, once known
   put_config(out, tree.config());
   put_motion(out, tree.motion());
-  put_tree(out, parts_of(tree));
+  put_tree(out, parts);
   if (tree.config().clearing.enabled) put_clearing(out, *clearing, tree);
   std::string& bytes = out.bytes();
   const std::uint64_t payload = bytes.size() - kHeaderBytes;
@@ -301,7 +306,10 @@ DecodedMap decode_map(std::string_view bytes) {
                                std::to_string(kMapFileVersion));
   }
   const auto payload = header.get<std::uint64_t>("payload length");
-  const std::size_t held = bytes.size() - std::min(bytes.size(), kHeaderBytes + kChecksumBytes);
+  if (bytes.size() < kHeaderBytes + kChecksumBytes) {
+    ByteReader::fail_at(bytes.size(), "the file ends before its checksum (truncated)");
+  }
+  const std::size_t held = bytes.size() - kHeaderBytes - kChecksumBytes;
   if (payload != held) {
     ByteReader::fail_at(12, "payload of " + std::to_string(payload) + " bytes, where the file holds " +
                                 std::to_string(held) + " (truncated or extended)");

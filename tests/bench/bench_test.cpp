@@ -47,7 +47,7 @@ TEST(Chamfer, ClipKeepsTheVoxelsThatMeetTheBox) {
 }
 
 TEST(Summary, MeansSkipTheFirstBuildAndP99IsANearestRank) {
-  MethodRun run{"eco", {}};
+  MethodRun run{"eco", {}, std::nullopt};
   for (int i = 0; i <= 100; ++i) {
     FrameRecord r;
     r.frame = std::size_t(i);
@@ -92,7 +92,7 @@ void expect_tables_line_up(const std::string& md, const nlohmann::json& summary)
   std::istringstream lines(md);
   std::string line;
   std::vector<std::vector<std::string>> table;
-  int tables = 0, checked_rows = 0, caller_rows = 0;
+  int tables = 0, checked_rows = 0, caller_rows = 0, map_rows = 0;
   auto finish = [&] {
     if (table.empty()) return;
     ++tables;
@@ -108,6 +108,17 @@ void expect_tables_line_up(const std::string& md, const nlohmann::json& summary)
         EXPECT_NEAR(std::stod(table[r][2]), m.at("caller_ms").get<double>(), 5e-4 + 1e-9);
         EXPECT_NEAR(std::stod(table[r][3]), m.at("caller_faults").get<double>(), 0.5 + 1e-9);
         ++caller_rows;
+      }
+      return;
+    }
+    if (header[1] == "file MB") {  // the map file (the methods that are an EgoOctree)
+      for (std::size_t r = 2; r < table.size(); ++r) {
+        const nlohmann::json& m = summary.at("methods").at(table[r][0]);
+        EXPECT_NEAR(std::stod(table[r][1]), m.at("map_file_bytes").get<double>() / 1e6, 5e-3 + 1e-9);
+        EXPECT_NEAR(std::stod(table[r][3]), m.at("map_save_ms").get<double>(), 5e-3 + 1e-9);
+        EXPECT_NEAR(std::stod(table[r][4]), m.at("map_load_ms").get<double>(), 5e-3 + 1e-9);
+        EXPECT_GT(m.at("map_file_bytes").get<double>(), m.at("map_point_bytes").get<double>());
+        ++map_rows;
       }
       return;
     }
@@ -148,7 +159,10 @@ void expect_tables_line_up(const std::string& md, const nlohmann::json& summary)
     }
   }
   finish();
-  EXPECT_EQ(tables, 3);
+  int trees = 0;  // the methods that are an EgoOctree have a map file
+  for (const auto& [name, m] : summary.at("methods").items()) trees += m.contains("map_file_bytes") ? 1 : 0;
+  EXPECT_EQ(tables, trees > 0 ? 4 : 3);
+  EXPECT_EQ(map_rows, trees);
   EXPECT_EQ(checked_rows, int(summary.at("methods").size()));
   EXPECT_EQ(caller_rows, int(summary.at("methods").size()));
 }

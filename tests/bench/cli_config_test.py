@@ -6,34 +6,18 @@ usage: cli_config_test.py ECO_CLI WORK_DIR"""
 
 import json
 import os
-import shutil
 import subprocess
 import sys
 
-CLI, WORK = sys.argv[1], sys.argv[2]
+from eco_command import check, eco, start
 
-
-def eco(*args, ok=True):
-    done = subprocess.run([CLI, *args], capture_output=True, text=True, cwd=WORK)
-    if ok and done.returncode != 0:
-        sys.exit(f"eco {' '.join(args)} failed:\n{done.stderr}")
-    if not ok and done.returncode == 0:
-        sys.exit(f"eco {' '.join(args)} should have failed")
-    return done
+CLI, WORK = start(sys.argv)
 
 
 def load(path):
     with open(os.path.join(WORK, path)) as f:
         return json.load(f)
 
-
-def check(condition, message):
-    if not condition:
-        sys.exit(message)
-
-
-shutil.rmtree(WORK, ignore_errors=True)
-os.makedirs(WORK)
 
 # simulate: writes its config.json; fed back, the same drive byte for byte
 eco("simulate", "--out", "sim", "--frames", "4", "--seed", "3")

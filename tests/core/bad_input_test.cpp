@@ -29,6 +29,9 @@ TEST(BadConfig, EachInvalidFieldIsRejectedByName) {
                   {"min_cell_size", "5", "quantum"});
   expect_rejected([&] { EgoOctree t(with([](Config& c) { c.min_cell_size = 1e-9; })); },
                   {"min_cell_size", "24 levels"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.min_cell_size = 4.9e-324; })); },
+                  {"min_cell_size", "24 levels"});
+  expect_rejected([&] { EgoOctree t(with([](Config& c) { c.box_side = 1.5e-323; })); }, {"min_cell_size"});
   expect_rejected([&] { EgoOctree t(with([](Config& c) { c.quantum_levels = 0; })); }, {"quantum_levels", "0"});
   expect_rejected([&] { EgoOctree t(with([](Config& c) { c.quantum_levels = 9; })); }, {"quantum_levels", "9"});
   expect_rejected(
@@ -166,6 +169,17 @@ TEST_F(BadCalls, NonFinitePointsAreSkippedAndCounted) {
 
 /// Grid indices are 64-bit: a voxel or density cell too small for how far the points lie from the
 /// world origin is refused by name, never wrapped silently.
+/// The smallest positive voxel_size rounds the quantum up from 2^-1074 m without overflowing an
+/// int on the way (found by fuzzing the map file's loader, which validates the file's Config).
+TEST(BadConfig, ATinyVoxelSizeStillGivesTheQuantum) {
+  Config c;
+  c.voxel_size = 4.9e-324;
+  EXPECT_NO_THROW(c.validate());
+  const double least = c.box_side / 7.0;
+  EXPECT_GE(c.quantum(), least);
+  EXPECT_LT(c.quantum(), 2.0 * least);
+}
+
 TEST(GridKeys, UnrepresentableVoxelOrDensityCellIsRejected) {
   Eigen::Isometry3d far = Eigen::Isometry3d::Identity();
   far.translation() = Eigen::Vector3d(4e9, -3e9, 0.0);  // 4 * 10^9 m from the start

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -55,18 +56,24 @@ class ConfigFlags {
     try {
       config.validate();
     } catch (const std::invalid_argument& e) {  // name what was given as it was typed
-      std::string given;
-      std::size_t j = 0;
-      for (const ConfigField& f : config_fields()) {
-        const std::string name(f.name);
-        if (options_[j]->count() > 0 && std::string(e.what()).find(name + " = ") != std::string::npos) {
-          given += (given.empty() ? "" : ", ") + ("--" + name + " " + texts_[j]);
-        }
-        ++j;
-      }
-      if (given.empty()) throw;
-      throw std::invalid_argument(std::string(e.what()) + " (given: " + given + ")");
+      const std::string what = e.what();
+      const std::string named = given([&](const std::string& name) { return what.find(name + " = ") != std::string::npos; });
+      if (named.empty()) throw;
+      throw std::invalid_argument(what + " (given: " + named + ")");
     }
+  }
+
+  /// The flags given (of the fields `pick` takes, when given), as typed: "--box_side 30,
+  /// --leaf_capacity 64"; empty when none.
+  [[nodiscard]] std::string given(const std::function<bool(const std::string&)>& pick = {}) const {
+    std::string out;
+    std::size_t i = 0;
+    for (const ConfigField& f : config_fields()) {
+      const std::string name(f.name);
+      if (options_[i]->count() > 0 && (!pick || pick(name))) out += (out.empty() ? "--" : ", --") + name + " " + texts_[i];
+      ++i;
+    }
+    return out;
   }
 
  private:

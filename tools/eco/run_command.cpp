@@ -30,7 +30,15 @@ struct RunOptions {
   double voxel = 0.1;
   std::uint64_t seed = 1;
   Config config;  // the library's defaults
+  std::string save;             // the map written here after the last frame (and every save_every)
+  std::size_t save_every = 0;
+  std::string load;             // a saved map to go on from
 };
+
+/// Where --save-every writes without --save.
+std::string save_path(const RunOptions& o) {
+  return o.save.empty() ? (std::filesystem::path(o.out) / "map.eco").string() : o.save;
+}
 
 /// `points` minus `origin`, as float32 (PLY): near the origin, millimetres survive the cast.
 io::PointCloud cloud_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin) {
@@ -106,7 +114,18 @@ class TrailReport {
   double keeping_ms_ = 0.0;
 };
 
-int run(const RunOptions& o) {
+/// The options of a run keyed by `eco run`'s flags (without --out and --config).
+nlohmann::json run_options_json(const RunOptions& o) {
+  nlohmann::json out{{"frames", o.frames}, {"export-every", o.export_every}, {"voxel", o.voxel}, {"seed", o.seed},
+                     {"save-every", o.save_every}};
+  // paths resolved, so that --config works from anywhere
+  if (!o.data.empty()) out["data"] = std::filesystem::weakly_canonical(o.data).string();
+  if (!o.save.empty()) out["save"] = std::filesystem::weakly_canonical(o.save).string();
+  if (!o.load.empty()) out["load"] = std::filesystem::weakly_canonical(o.load).string();
+  return out;
+}
+
+int run(const RunOptions& o, const std::string& command_line) {
   std::unique_ptr<workloads::Workload> scans;
   if (o.data.empty()) {
     sim::SimConfig sim;
@@ -116,16 +135,21 @@ int run(const RunOptions& o) {
   } else {
     scans = std::make_unique<workloads::DynamicWorkload>(io::KittiSequence(o.data));
   }
-  const Config& config = o.config;
-  EgoOctree tree(config);
+  // a loaded map goes on from the frame after its last, under its own configuration
+  EgoOctree tree = o.load.empty() ? EgoOctree(o.config) : EgoOctree::load(o.load);
+  const Config& config = tree.config();
+  // a loaded map brings its own configuration: the file names the map, not the fields
+  write_options_file(o.out, "run", command_line, run_options_json(o), o.load.empty() ? &config : nullptr);
   const std::size_t total = o.frames > 0 ? std::min(o.frames, scans->size()) : scans->size();
+  const std::size_t first = tree.frame_count();
   std::printf("%s, %zu frames; %s\n", o.data.empty() ? "simulated drive" : o.data.c_str(), total,
               describe_settings(config).c_str());
+  if (!o.load.empty()) std::printf("loaded %s: %zu points after frame %zu\n", o.load.c_str(), tree.size(), first - 1);
   std::printf("%6s %8s %8s %8s %8s %9s %8s %6s %6s %9s %7s\n", "frame", "scan", "inserted", "pruned", "cleared",
               "held", "nodes", "depth", "B/pt", "update ms", "trail");
   std::unique_ptr<TrailReport> trails;
   double update_ms = 0.0;
-  for (std::size_t t = 0; t < total; ++t) {
+  for (std::size_t t = first; t < total; ++t) {
     const workloads::WorkloadFrame frame = scans->frame(t);
     std::optional<workloads::AttributedScan> attributed;
     const ScanView scan = workloads::scan_for(frame, config.attributes, attributed);
@@ -140,19 +164,18 @@ int run(const RunOptions& o) {
                 u.cleared, s.points, s.nodes, s.mean_leaf_depth, s.points ? double(s.bytes) / double(s.points) : 0.0,
                 ms, trail.c_str());
     if (o.export_every > 0 && (t % o.export_every == 0 || t + 1 == total)) export_frame(o, tree, t);
+    if (o.save_every > 0 && t % o.save_every == o.save_every - 1) tree.save(save_path(o));
+  }
+  if (!o.save.empty() || o.save_every > 0) {
+    tree.save(save_path(o));
+    std::printf("saved the map after frame %u to %s\n", tree.frame_count() - 1, save_path(o).c_str());
   }
   if (o.export_every > 0) std::printf("wrote <frame>_points.ply and <frame>_voxels.ply (ego frame) to %s\n", o.out.c_str());
-  if (trails) trails->print(total ? update_ms / double(total) : 0.0, total);
+  const std::size_t ran = total > first ? total - first : 0;
+  if (trails) trails->print(ran ? update_ms / double(ran) : 0.0, ran);
   const std::string broken = tree.check_invariants();
   std::printf("invariants: %s\n", broken.empty() ? "all hold" : broken.c_str());
   return broken.empty() ? 0 : 1;
-}
-
-/// The options of a run keyed by `eco run`'s flags (without --out and --config).
-nlohmann::json run_options_json(const RunOptions& o) {
-  nlohmann::json out{{"frames", o.frames}, {"export-every", o.export_every}, {"voxel", o.voxel}, {"seed", o.seed}};
-  if (!o.data.empty()) out["data"] = std::filesystem::weakly_canonical(o.data).string();  // --config works from anywhere
-  return out;
 }
 
 }  // namespace
@@ -167,6 +190,11 @@ Run add_run(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--out", o->out, "folder for config.json and the PLY files")->capture_default_str();
   cmd->add_option("--voxel", o->voxel, "voxel map resolution [m]")->capture_default_str();
   cmd->add_option("--seed", o->seed, "the simulator's seed without --data")->capture_default_str();
+  cmd->add_option("--save", o->save, "write the map to FILE after the last frame (EgoOctree::save)");
+  cmd->add_option("--save-every", o->save_every, "also write it every K frames (to --save, else <out>/map.eco)")
+      ->capture_default_str();
+  cmd->add_option("--load", o->load, "go on from the map saved in FILE: its configuration, from the frame after its last")
+      ->check(CLI::ExistingFile);
   auto flags = std::make_shared<ConfigFlags>(*cmd, o->config);
   auto file = std::make_shared<OptionsFile>(*cmd, "run");
   cmd->footer(
@@ -179,12 +207,16 @@ Run add_run(CLI::App& app, const std::string& command_line) {
       "  eco run --frames 50\n"
       "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out results/run00\n"
       "  eco run --data ../shared/data/kitti_mini_00 --density_cap.cell_size 0.1 --density_cap.max_points 2\n"
-      "  eco run --frames 60 --clearing.enabled true     the simulator's cars: their trails, cleared or kept");
+      "  eco run --frames 60 --clearing.enabled true     the simulator's cars: their trails, cleared or kept\n"
+      "  eco run --frames 50 --save results/run/map.eco && eco run --frames 100 --load results/run/map.eco\n"
+      "                                                  the same drive in two runs: frames 0-49, then 50-99");
   return [o, flags, file, command_line] {
     file->load();
+    if (!o->load.empty() && !flags->given().empty()) {
+      throw std::invalid_argument("--load goes on under the saved map's own configuration; drop " + flags->given());
+    }
     flags->apply(o->config);
-    write_options_file(o->out, "run", command_line, run_options_json(*o), &o->config);
-    return run(*o);
+    return run(*o, command_line);
   };
 }
 

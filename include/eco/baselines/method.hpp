@@ -24,6 +24,7 @@
 /// implementations of KNN. Queries are in the world frame.
 
 #include <eco/config.hpp>
+#include <eco/ego_octree.hpp>
 #include <eco/types.hpp>
 
 #include <Eigen/Geometry>
@@ -69,6 +70,8 @@ class Method {
   [[nodiscard]] virtual std::string check_invariants() const = 0;
   [[nodiscard]] virtual const Config& config() const = 0;
   [[nodiscard]] virtual const Eigen::Isometry3d& pose() const = 0;
+  /// The EgoOctree behind the method, for what only ECO offers (a map file); null for the others.
+  [[nodiscard]] virtual const EgoOctree* ego_octree() const { return nullptr; }
 };
 
 /// Every method name make_method accepts, ECO's first.
