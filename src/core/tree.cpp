@@ -54,7 +54,9 @@ void Tree::shift_times(double shift) {
 void Tree::recount_density(const std::vector<StoredPoint>& held) {
   density_.clear();
   if (!cfg_.density_cap.enabled()) return;
-  for (const StoredPoint& s : held) density_.add(density_key(s.p));
+  count_density([&](auto&& add) {
+    for (const StoredPoint& s : held) add(s.p);
+  });
 }
 
 void Tree::give_back_memory(std::size_t floor) {

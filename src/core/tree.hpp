@@ -228,6 +228,23 @@ class Tree {
   enum class Filtered { Unchanged, Changed, Gone };  // what filter_below did to a subtree
   template <class Filter>
   Filtered filter_below(std::uint32_t id, Filter& filter, UpdateStats& stats);
+  /// Counts in the density cells every point walk(add) hands to add(const std::array<float, 3>&),
+  /// a group of keys at a time (one at a time, the grouped kernel would run for each).
+  template <class Walk>
+  void count_density(Walk&& walk) {
+    std::array<std::uint64_t, CellCounts::kMaxKeys> keys;
+    std::array<std::uint8_t, CellCounts::kMaxKeys> passed;
+    std::size_t n = 0;
+    const auto flush = [&] {
+      density_.add_below_each(keys.data(), n, CellCounts::kMaxCount, passed.data());
+      n = 0;
+    };
+    walk([&](const std::array<float, 3>& p) {
+      keys[n++] = density_key(p);
+      if (n == keys.size()) flush();
+    });
+    flush();
+  }
   /// The density-cap cell of stored point p, as CellCounts names it.
   [[nodiscard]] std::uint64_t density_key(const std::array<float, 3>& p) const {
     return CellCounts::key(density_grid_.index(p));

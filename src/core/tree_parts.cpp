@@ -125,7 +125,9 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
   root_ = build(build, kNone, 0, root_cell_);
   if (next_node != parts.nodes.size()) refuse(std::to_string(parts.nodes.size() - next_node) + " nodes past the tree");
   if (next_point != n) refuse(std::to_string(n - next_point) + " points past the tree's leaves");
-  if (cfg_.density_cap.enabled()) walk_points(root_, [&](const StoredPoint& s) { density_.add(density_key(s.p)); });
+  if (cfg_.density_cap.enabled()) {
+    count_density([&](auto&& add) { walk_points(root_, [&](const StoredPoint& s) { add(s.p); }); });
+  }
   assert(check_tree(*this).empty());  // every invariant, by the refusals above
 }
 
