@@ -105,8 +105,8 @@ void put_pose(ByteWriter& out, const Eigen::Isometry3d& pose) {  // get_pose rea
   }
 }
 
-/// A pose update() would take under `config`, within 1e9 m of the world's origin (where the
-/// lattice's integer cells stay far from overflowing).
+/// A pose update() would take under `config` (rigid, where the lattice's integer cells and the
+/// density cap's grid reach).
 Eigen::Isometry3d get_pose(ByteReader& in, const Config& config) {
   const std::size_t at = in.offset();
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
@@ -118,7 +118,6 @@ Eigen::Isometry3d get_pose(ByteReader& in, const Config& config) {
   } catch (const std::invalid_argument& e) {
     ByteReader::fail_at(at, e.what());
   }
-  if (!(pose.translation().cwiseAbs().maxCoeff() < 1e9)) ByteReader::fail_at(at, "pose: farther than 1e9 m out");
   return pose;
 }
 

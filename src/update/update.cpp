@@ -17,6 +17,11 @@ std::string describe(const Eigen::Isometry3d& pose) {
   return s.str();
 }
 
+/// How many quanta from the world origin a pose may lie in Quantised mode: the root cell's
+/// integer lattice indices (a quantum is 2^(depth - k) of them, at most 2^23) stay far from
+/// overflowing within it (7.9e11 m at the default quantum).
+constexpr double kMaxQuanta = 0x1p38;
+
 /// The most points a scan may hold: the update names them by 32-bit indices.
 constexpr std::size_t kMaxScanPoints = std::numeric_limits<std::uint32_t>::max();
 
@@ -86,6 +91,12 @@ void detail::check_pose(const Eigen::Isometry3d& pose, const char* name) {
 void detail::check_update_arguments(const Eigen::Isometry3d& pose, const char* name,
                                     const ScanView& scan, const Config& config) {
   check_pose(pose, name);
+  if (config.recentring == Recentring::Quantised &&
+      !(pose.translation().cwiseAbs().maxCoeff() < kMaxQuanta * config.quantum())) {
+    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name + " = " + describe(pose) +
+                                " lies farther than 2^38 quanta (q = " + std::to_string(config.quantum()) +
+                                " m) from the world origin");
+  }
   check_scan(scan, config);
   check_density_grid(pose, config);
 }

@@ -120,6 +120,17 @@ TEST_F(BadCalls, NonFinitePoseIsRejectedAndTreeUnchanged) {
   expect_unchanged();
 }
 
+/// A pose farther out than any drive, where the root cell's integer lattice indices would near
+/// their limits (2^38 quanta: 7.9e11 m at the default quantum), is refused naming it.
+TEST_F(BadCalls, APoseFartherThan2To38QuantaIsRejected) {
+  Eigen::Isometry3d far = pose_;
+  far.translation().y() = -1e12;
+  expect_rejected([&] { tree_.update(far, scan_); }, {"world_T_sensor", "farther than 2^38 quanta"});
+  far.translation().y() = 1e18;
+  expect_rejected([&] { tree_.update(far, scan_); }, {"world_T_sensor", "farther than 2^38 quanta"});
+  expect_unchanged();
+}
+
 TEST_F(BadCalls, NonOrthonormalRotationIsRejected) {
   Eigen::Isometry3d scaled = pose_;
   scaled.linear() *= 1.01;
