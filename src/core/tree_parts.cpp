@@ -26,7 +26,12 @@ TreeParts parts_of(const Tree& tree) {
   parts.motion = tree.motion();
   if (tree.root() == kNone) return parts;
   TreeParts::Columns& c = parts.points;
-  for (auto* column : {&c.x, &c.y, &c.z, &c.intensities, &c.times}) column->reserve(tree.size());
+  const Columns kept = tree.points().columns();
+  for (auto* column : {&c.x, &c.y, &c.z}) column->reserve(tree.size());
+  if (kept.stamps) c.stamps.reserve(tree.size());
+  if (kept.ids) c.ids.reserve(tree.size());
+  if (kept.intensities) c.intensities.reserve(tree.size());
+  if (kept.times) c.times.reserve(tree.size());
   const auto walk = [&](auto&& self, std::uint32_t id) -> void {
     const Node& n = tree.nodes()[id];
     TreeParts::NodeEntry entry{n.leaf, 0, n.leaf ? n.count : 0};

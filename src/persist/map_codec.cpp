@@ -198,12 +198,9 @@ std::unique_ptr<Tree> get_tree(ByteReader& in, const Config& config, const Motio
       n.children = in.get<std::uint8_t>("inner node's children");
     }
   }
-  const std::size_t points_at = in.offset();
-  const auto n = in.get<std::uint64_t>("point count");
+  const auto n = in.get<std::uint64_t>("point count");  // get_values refuses a count past the file
   const Columns kept{config.max_age_frames > 0, config.attributes.ids, config.attributes.intensity,
                      config.attributes.time};
-  const std::size_t per_point = 12 + 4 * std::size_t(kept.count());
-  if (n > in.left() / per_point) ByteReader::fail_at(points_at, "point count " + std::to_string(n) + ": past the end of the file");
   TreeParts::Columns& c = parts.points;
   const auto column = [&](auto& values, bool is_kept, const char* what) {
     if (is_kept) in.get_values(values, n, what);

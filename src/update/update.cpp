@@ -91,8 +91,11 @@ void detail::check_pose(const Eigen::Isometry3d& pose, const char* name) {
 void detail::check_update_arguments(const Eigen::Isometry3d& pose, const char* name,
                                     const ScanView& scan, const Config& config) {
   check_pose(pose, name);
-  if (config.recentring == Recentring::Quantised &&
-      !(pose.translation().cwiseAbs().maxCoeff() < kMaxQuanta * config.quantum())) {
+  // the quantum is at least box_side / (2^k - 1): only a pose past that bound computes it
+  const double reach = pose.translation().cwiseAbs().maxCoeff();
+  const double least_quantum = config.box_side / double((1u << config.quantum_levels) - 1u);
+  if (config.recentring == Recentring::Quantised && !(reach < kMaxQuanta * least_quantum) &&
+      !(reach < kMaxQuanta * config.quantum())) {
     throw std::invalid_argument(std::string("eco::EgoOctree: ") + name + " = " + describe(pose) +
                                 " lies farther than 2^38 quanta (q = " + std::to_string(config.quantum()) +
                                 " m) from the world origin");
