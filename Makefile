@@ -2,6 +2,7 @@
 
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
+TSAN_BUILD ?= build-tsan
 FUZZ_BUILD ?= build-fuzz
 JOBS       ?= $(shell nproc)
 DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev libeigen3-dev libgtest-dev liblzf-dev zlib1g-dev \
@@ -11,7 +12,7 @@ DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev libeigen3-dev libgtes
 ## Debian's own interpreter, whatever else is first on PATH (pyenv, conda).
 PYTHON     ?= /usr/bin/python3
 
-.PHONY: all deps build demo test test-release test-sanitize test-fuzz install python clean
+.PHONY: all deps build demo test test-release test-sanitize test-threads test-fuzz install python clean
 
 all: build
 
@@ -32,13 +33,13 @@ demo: build
 	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --preset paper --workload dynamic --out results/demo-dynamic
 
 ## test: every test (C++ and, through pytest, Python), in a release build; the C++ tests again
-## under AddressSanitizer + UBSan; then each parser's libFuzzer target for a fixed time
-## (FUZZ_SECONDS) under the same sanitizers.
+## under AddressSanitizer + UBSan; the concurrency tests under ThreadSanitizer; then each parser's
+## libFuzzer target for a fixed time (FUZZ_SECONDS) under ASan + UBSan.
 FUZZ_SECONDS ?= 10
 ## The sanitized builds keep line tables only: all a sanitizer's report needs, and about 30 % less
 ## time to compile than full debug information.
 SANITIZED_DEBUG := -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1
-test: test-release test-sanitize test-fuzz
+test: test-release test-sanitize test-threads test-fuzz
 
 test-release: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
@@ -47,6 +48,11 @@ test-sanitize: deps
 	cmake -S . -B $(ASAN_BUILD) $(SANITIZED_DEBUG) -DECO_SANITIZE=ON -DECO_BUILD_EXAMPLES=OFF
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+
+test-threads: deps
+	cmake -S . -B $(TSAN_BUILD) $(SANITIZED_DEBUG) -DECO_THREAD_SANITIZE=ON -DECO_BUILD_TOOLS=OFF -DECO_BUILD_EXAMPLES=OFF
+	cmake --build $(TSAN_BUILD) -j $(JOBS) --target snapshot_threads_test
+	ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS)
 
 test-fuzz: deps
 	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ $(SANITIZED_DEBUG) -DECO_FUZZ=ON \
@@ -68,4 +74,4 @@ install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) $(FUZZ_BUILD)

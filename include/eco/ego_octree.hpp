@@ -18,19 +18,22 @@
 /// * Bad input throws std::invalid_argument naming the value, and leaves the tree unchanged.
 ///   Non-finite scan points are skipped and counted, never thrown on.
 ///
-/// Thread safety: concurrent const calls (queries, stats) are safe; update() needs exclusive
-/// access. The library never prints and never aborts.
+/// Thread safety:
+/// * const calls (the queries of MapReader, stats, save) may run concurrently with each other;
+///   update(), update_relative() and snapshot() need exclusive access to the tree;
+/// * a Snapshot is immutable: any number of threads may query it at any time, also while its
+///   tree runs update() or publishes later snapshots, and any thread may drop the last handle.
+/// The library never prints and never aborts.
 
 #include <eco/config.hpp>
+#include <eco/map_reader.hpp>
+#include <eco/snapshot.hpp>
 #include <eco/types.hpp>
 
 #include <Eigen/Geometry>
 
-#include <functional>
 #include <memory>
-#include <span>
 #include <string>
-#include <vector>
 
 namespace eco {
 
@@ -39,7 +42,8 @@ class Tree;
 struct ClearingState;
 }  // namespace detail
 
-class EgoOctree {
+/// The live map. Its queries (knn, radius, box, voxel map, points, stats) are MapReader's.
+class EgoOctree final : public MapReader {
  public:
   /// Validates `config` (throws std::invalid_argument) and creates an empty tree.
   explicit EgoOctree(const Config& config = {});
@@ -60,68 +64,15 @@ class EgoOctree {
   /// The first frame starts from the identity pose.
   const UpdateStats& update_relative(const Eigen::Isometry3d& previous_T_current, ScanView scan);
 
-  /// The k nearest held points to `query`, nearest first. Fewer than k when fewer are held.
-  [[nodiscard]] std::vector<Neighbor> knn(const Eigen::Vector3d& query, std::size_t k,
-                                          Frame frame = Frame::World) const;
-  /// Caller-owned buffer variant: writes at most out.size() neighbours, returns how many.
-  std::size_t knn(const Eigen::Vector3d& query, std::span<Neighbor> out,
-                  Frame frame = Frame::World) const;
-  /// The same as ids and squared distances, nanoflann's way: writes the ids of at most
-  /// ids.size() nearest points and their squared distances, nearest first, into the caller's
-  /// buffers (no allocation); returns how many. Throws std::invalid_argument unless
-  /// Config::attributes.ids is on and the two spans have the same size.
-  std::size_t knn(const Eigen::Vector3d& query, std::span<std::uint32_t> ids, std::span<double> sq_dists,
-                  Frame frame = Frame::World) const;
-
-  /// Held points with ||p - query|| <= radius (a plain radius in metres, not squared),
-  /// nearest first.
-  [[nodiscard]] std::vector<Neighbor> radius(const Eigen::Vector3d& query, double radius,
-                                             Frame frame = Frame::World) const;
-
-  /// Held points inside the closed box [lo, hi], in no particular order.
-  [[nodiscard]] std::vector<Eigen::Vector3d> box(const Eigen::Vector3d& lo,
-                                                 const Eigen::Vector3d& hi,
-                                                 Frame frame = Frame::World) const;
-
-  /// The same points with their attributes.
-  [[nodiscard]] std::vector<HeldPoint> box_with_attributes(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                                                           Frame frame = Frame::World) const;
-
-  /// Keys of the occupied voxels of the world-aligned grid of side `resolution` [m], unique, in no
-  /// particular order (sort them if you need one). Voxel i on an axis holds the stored coordinate
-  /// f (offset from the precision origin o) with i*res - o <= f < (i+1)*res - o, walls in double.
-  /// Every key holds at least one point, so every voxel meets the ego box. With
-  /// resolution = Config::voxel_size * 2^i (Quantised mode) the map visits one node per voxel,
-  /// not every point. Throws std::invalid_argument naming `resolution` if it is not > 0 or too
-  /// small to index the held points in 64 bits.
-  [[nodiscard]] std::vector<VoxelKey> voxel_keys(double resolution) const;
-  /// Centres of the same voxels, in `frame`, in the same order.
-  [[nodiscard]] std::vector<Eigen::Vector3d> voxelize(double resolution,
-                                                      Frame frame = Frame::World) const;
-
-  /// Every held point, in world coordinates, in no particular order.
-  [[nodiscard]] std::vector<Eigen::Vector3d> points() const;
-  /// Every held point with its attributes, world coordinates, in no particular order.
-  [[nodiscard]] std::vector<HeldPoint> points_with_attributes() const;
-  /// Calls `visit` once per held point with its world coordinates.
-  void for_each_point(const std::function<void(const Eigen::Vector3d&)>& visit) const;
-
-  [[nodiscard]] std::size_t size() const;  ///< points held, O(1)
-  [[nodiscard]] Stats stats() const;       ///< O(nodes)
   [[nodiscard]] const UpdateStats& last_update() const;
-  [[nodiscard]] const Config& config() const;
 
-  /// The current sensor pose (identity before the first update).
-  [[nodiscard]] const Eigen::Isometry3d& pose() const;
-  /// The current ego box [lo, hi) in world coordinates (empty before the first update).
-  [[nodiscard]] Eigen::AlignedBox3d ego_box() const;
-  /// The world point that stored float coordinates are offsets from (a multiple of 1024 m).
-  [[nodiscard]] Eigen::Vector3d precision_origin() const;
-  /// The time [s] that stored times are offsets from (Config::attributes.time; a multiple of
-  /// 64 s within 128 s of the latest time taken in; 0 before any).
-  [[nodiscard]] double time_origin() const;
-  /// Updates taken so far.
-  [[nodiscard]] std::uint32_t frame_count() const;
+  /// The map as it is now, published for readers on other threads: an immutable handle that
+  /// answers every query as this tree does now, names its frame and pose, and never changes
+  /// while this tree updates. It costs a reference per 4 KiB page of the map, not a copy: the
+  /// tree copies a page when it first writes it after the call (docs/design.md, "Snapshots").
+  /// What only snapshots hold goes back to the system when their last handle goes
+  /// (Stats::snapshot_bytes). Needs exclusive access, as update() does.
+  [[nodiscard]] std::shared_ptr<const Snapshot> snapshot();
 
   /// Writes the whole state needed to go on exactly — configuration, pose, precision origin,
   /// frame counter and clock, every held point with its ids and attributes, and free-space
@@ -137,13 +88,11 @@ class EgoOctree {
   /// is loaded.
   [[nodiscard]] static EgoOctree load(const std::string& path);
 
-  /// Checks every structural invariant (bounds, counts, cells, parent links); returns an empty
-  /// string when all hold, else a description of the first violation. O(points); for tests and
-  /// for users who want to check a map.
-  [[nodiscard]] std::string check_invariants() const;
-
  private:
   EgoOctree(std::unique_ptr<detail::Tree> tree, std::unique_ptr<detail::ClearingState> clearing);
+
+  [[nodiscard]] const detail::Tree& held() const override;
+  [[nodiscard]] std::size_t bytes_beside_tree() const override;
 
   std::unique_ptr<detail::Tree> tree_;
   std::unique_ptr<detail::ClearingState> clearing_;  // free-space clearing's, while Config::clearing is on

@@ -79,6 +79,10 @@ struct Stats {
   double mean_leaf_depth = 0.0;  ///< over non-empty leaves, weighted equally
   int max_leaf_depth = 0;
   std::size_t bytes = 0;         ///< every byte the tree's pools reserve, free slots included
+  /// Bytes only snapshots keep alive: the versions of pages the tree has replaced since it
+  /// published them (EgoOctree::snapshot()), given back when the last snapshot holding them goes.
+  /// The same figure from the tree and from any of its snapshots.
+  std::size_t snapshot_bytes = 0;
 };
 
 /// What the last update did.

@@ -19,6 +19,9 @@ struct Record<Stats> {
               "over non-empty leaves, weighted equally"),
         field("max_leaf_depth", &Stats::max_leaf_depth, "depth of the deepest non-empty leaf"),
         field("bytes", &Stats::bytes, "every byte the tree's pools reserve, free slots included"),
+        field("snapshot_bytes", &Stats::snapshot_bytes,
+              "bytes only snapshots keep alive (pages the tree replaced since), given back when "
+              "the last snapshot holding them goes"),
     };
   }
 };

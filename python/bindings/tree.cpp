@@ -1,6 +1,7 @@
-// eco.EgoOctree: the C++ EgoOctree behind a reader-writer lock, fed and read with numpy arrays.
-// The GIL is released while C++ works; the lock keeps update() exclusive of queries, as the C++
-// contract asks, when Python threads share a tree.
+// eco.EgoOctree: the C++ EgoOctree behind a reader-writer lock, fed and read with numpy arrays;
+// eco.Snapshot: one of its snapshots, with the same query methods. The GIL is released while C++
+// works; the lock keeps update() and snapshot() exclusive of queries, as the C++ contract asks,
+// when Python threads share a tree. A snapshot needs no lock: it never changes.
 
 #include "bindings.hpp"
 #include "config_record.hpp"
@@ -15,6 +16,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <utility>
 
 namespace eco::python {
@@ -27,12 +29,23 @@ struct SharedTree {
   mutable std::shared_mutex mutex;
 };
 
-/// Runs `work(tree)` without the GIL, holding the lock shared (queries) or exclusive (updates).
+/// A snapshot as Python holds it.
+struct SnapshotHandle {
+  std::shared_ptr<const Snapshot> snapshot;
+};
+
+/// Runs `work(map)` (a const MapReader&) without the GIL, holding the tree's lock shared.
 template <class Work>
 auto reading(const SharedTree& t, Work&& work) {
   py::gil_scoped_release no_gil;
   std::shared_lock lock(t.mutex);
-  return work(static_cast<const EgoOctree&>(t.tree));
+  return work(static_cast<const MapReader&>(t.tree));
+}
+/// The same for a snapshot, which needs no lock.
+template <class Work>
+auto reading(const SnapshotHandle& s, Work&& work) {
+  py::gil_scoped_release no_gil;
+  return work(static_cast<const MapReader&>(*s.snapshot));
 }
 template <class Work>
 auto writing(SharedTree& t, Work&& work) {
@@ -41,11 +54,11 @@ auto writing(SharedTree& t, Work&& work) {
   return work(t.tree);
 }
 
-/// A binding that returns `(tree.*getter)()` read under the shared lock, without the GIL.
-template <auto getter>
+/// A binding that returns `(map.*getter)()` read as reading() reads, without the GIL.
+template <class Holder, auto getter>
 auto read() {
-  return [](const SharedTree& self) {
-    return reading(self, [](const EgoOctree& t) { return (t.*getter)(); });
+  return [](const Holder& self) {
+    return reading(self, [](const auto& t) { return (t.*getter)(); });
   };
 }
 
@@ -130,20 +143,32 @@ py::tuple neighbors_arrays(const std::vector<Neighbor>& found) {
   return py::make_tuple(points, sq_dists);
 }
 
+/// The map's configuration (fixed for its life).
+template <class Holder>
+const Config& config_of(const Holder& self) {
+  if constexpr (std::is_same_v<Holder, SharedTree>) {
+    return self.tree.config();
+  } else {
+    return self.snapshot->config();
+  }
+}
+
 /// Raises ValueError unless the tree keeps ids (what return_ids=True asks for).
-void require_ids(const SharedTree& self) {
-  if (!self.tree.config().attributes.ids) {
+template <class Holder>
+void require_ids(const Holder& self) {
+  if (!config_of(self).attributes.ids) {
     throw py::value_error("return_ids=True needs ids kept: config.attributes.ids is off");
   }
 }
 
 /// knn(..., return_ids=True): (sq_dists, ids), SciPy's (dists, idx) with squared distances.
-py::tuple knn_ids(const SharedTree& self, const Rows3& q, std::size_t k, Frame frame, unsigned workers) {
+template <class Holder>
+py::tuple knn_ids(const Holder& self, const Rows3& q, std::size_t k, Frame frame, unsigned workers) {
   require_ids(self);
   const std::size_t m = q.size();
   std::vector<double> sq_dists;
   std::vector<std::uint32_t> ids;
-  const std::size_t columns = reading(self, [&](const EgoOctree& tree) {
+  const std::size_t columns = reading(self, [&](const MapReader& tree) {
     const std::size_t kept = std::min(k, tree.size());
     sq_dists.resize(m * kept);
     ids.resize(m * kept);
@@ -160,7 +185,8 @@ py::tuple knn_ids(const SharedTree& self, const Rows3& q, std::size_t k, Frame f
   return py::make_tuple(shaped_array(std::move(sq_dists), shape), shaped_array(std::move(ids), shape));
 }
 
-py::tuple knn(const SharedTree& self, const py::object& queries, const py::object& k_value,
+template <class Holder>
+py::tuple knn(const Holder& self, const py::object& queries, const py::object& k_value,
               const py::object& frame_value, const py::object& workers_value, bool return_ids) {
   const Rows3 q(queries, "queries", /*allow_single=*/true);
   q.require_finite();
@@ -171,7 +197,7 @@ py::tuple knn(const SharedTree& self, const py::object& queries, const py::objec
   const std::size_t m = q.size();
   // k is clamped to the points held, so a huge k costs no more than the tree's size.
   std::vector<double> points, sq_dists;
-  const std::size_t columns = reading(self, [&](const EgoOctree& tree) {
+  const std::size_t columns = reading(self, [&](const MapReader& tree) {
     const std::size_t kept = std::min(k, tree.size());
     points.resize(m * kept * 3);
     sq_dists.resize(m * kept);
@@ -203,7 +229,8 @@ py::tuple distances_and_ids(const std::vector<Neighbor>& found) {
   return py::make_tuple(values_array(std::move(sq_dists)), values_array(std::move(ids)));
 }
 
-py::object radius(const SharedTree& self, const py::object& queries, const py::object& radius_value,
+template <class Holder>
+py::object radius(const Holder& self, const py::object& queries, const py::object& radius_value,
                   const py::object& frame_value, const py::object& workers_value, bool return_ids) {
   const Rows3 q(queries, "queries", /*allow_single=*/true);
   q.require_finite();
@@ -212,7 +239,7 @@ py::object radius(const SharedTree& self, const py::object& queries, const py::o
   const unsigned workers = workers_arg(workers_value);
   if (return_ids) require_ids(self);
   const auto as_arrays = return_ids ? &distances_and_ids : &neighbors_arrays;
-  const auto found = reading(self, [&](const EgoOctree& tree) {
+  const auto found = reading(self, [&](const MapReader& tree) {
     std::vector<std::vector<Neighbor>> out(q.size());
     in_slices(q.size(), workers, [&](std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) out[i] = tree.radius(q.row(i), r, frame);
@@ -273,11 +300,125 @@ Array arguments: points and queries are (N, 3) array-likes of real numbers (nump
 real dtype and layout, lists); C-contiguous float32 and float64 arrays are read in place, anything
 else is converted first. Small arguments (poses, box corners) take the same. Results are float64 numpy arrays in the query's frame.)";
 
+/// The query methods, alike on a tree and on a snapshot (Holder: SharedTree or SnapshotHandle).
+template <class Holder>
+void def_queries(py::class_<Holder>& cls) {
+  cls.def("knn", &knn<Holder>, py::arg("queries"), py::arg("k"), py::arg("frame") = Frame::World,
+           py::arg("workers") = 1, py::kw_only(), py::arg("return_ids") = false,
+           R"(The k nearest held points to each query, nearest first, exact.
+
+queries: (M, 3) float32/float64 array, or one (3,) point.
+Returns (points, sq_dists): (M, n, 3) and (M, n) float64 arrays ((n, 3) and (n,) for one
+point), n = min(k, len(tree)): k is clamped to the points held (SciPy pads with inf instead).
+frame: Frame.World (default) or Frame.Ego (world axes, origin at the sensor), or its name.
+workers: threads sharing the batch (default 1; -1: one per core). Answers do not depend on it.
+return_ids: return (sq_dists, ids) instead, ids the uint32 ids given to update() (needs
+    config.attributes.ids), in the shapes of sq_dists: scipy.spatial.cKDTree.query's (dists, idx)
+    with squared distances and the caller's ids in place of row indices.)")
+      .def("radius", &radius<Holder>, py::arg("queries"), py::arg("radius"),
+           py::arg("frame") = Frame::World, py::arg("workers") = 1, py::kw_only(), py::arg("return_ids") = false,
+           R"(Held points within `radius` metres (closed ball) of each query, nearest first.
+
+For one (3,) query returns (points (n, 3), sq_dists (n,)); for (M, 3) queries, a list of M
+such pairs. workers: as for knn(). return_ids: (sq_dists, ids) pairs instead, as for knn().)")
+      .def(
+          "box",
+          [](const Holder& self, const py::object& lo_value, const py::object& hi_value,
+             const py::object& frame_value, bool attributes) -> py::object {
+            const Eigen::Vector3d lo = vector3_arg(lo_value, "lo");
+            const Eigen::Vector3d hi = vector3_arg(hi_value, "hi");
+            const Frame frame = enum_arg<Frame>(frame_value, "frame");
+            if (attributes) {
+              return with_attributes(config_of(self).attributes, reading(self, [&](const MapReader& t) {
+                                       return t.box_with_attributes(lo, hi, frame);
+                                     }));
+            }
+            return rows_array(
+                reading(self, [&](const MapReader& t) { return t.box(lo, hi, frame); }));
+          },
+          py::arg("lo"), py::arg("hi"), py::arg("frame") = Frame::World, py::kw_only(),
+          py::arg("attributes") = false,
+          "Held points inside the closed box [lo, hi] (3-vectors), as an (n, 3) array in no "
+          "particular order. attributes=True: (points, attributes), attributes a dict of the kept "
+          "ones' (n,) arrays, in the points' order: 'ids' uint32, 'intensities' float32, 'times' float64.")
+      .def(
+          "voxelize",
+          [](const Holder& self, const py::object& resolution, const py::object& frame_value) {
+            const double res = number_arg(resolution, "resolution");
+            const Frame frame = enum_arg<Frame>(frame_value, "frame");
+            return rows_array(
+                reading(self, [&](const MapReader& t) { return t.voxelize(res, frame); }));
+          },
+          py::arg("resolution"), py::arg("frame") = Frame::World,
+          "Centres of the occupied voxels of the world-aligned grid of side `resolution` [m], "
+          "as a (V, 3) array in key order.")
+      .def(
+          "voxel_keys",
+          [](const Holder& self, const py::object& resolution) {
+            const double res = number_arg(resolution, "resolution");
+            return keys_array(reading(self, [&](const MapReader& t) { return t.voxel_keys(res); }));
+          },
+          py::arg("resolution"),
+          "Integer keys (V, 3) int64 of the occupied voxels, unique, in no particular order (the "
+          "tree's): voxel i spans [i*resolution, (i+1)*resolution) per axis. Fastest when "
+          "resolution is config.voxel_size * 2^i (then nodes are visited, not points).")
+      .def(
+          "points",
+          [](const Holder& self, bool attributes) -> py::object {
+            if (attributes) {
+              return with_attributes(config_of(self).attributes, read<Holder, &MapReader::points_with_attributes>()(self));
+            }
+            return rows_array(read<Holder, &MapReader::points>()(self));
+          },
+          py::kw_only(), py::arg("attributes") = false,
+          "Every held point, world frame, as an (N, 3) float64 array in no particular order. "
+          "attributes=True: (points, attributes) as box() gives them.")
+      .def("stats", read<Holder, &MapReader::stats>(), "What the tree holds now (a Stats; O(nodes)).")
+      .def("check_invariants", read<Holder, &MapReader::check_invariants>(),
+           "Checks every structural invariant; returns '' when all hold, else the first violation.")
+      .def("__len__", read<Holder, &MapReader::size>(), "Points held.")
+      .def_property_readonly("size", read<Holder, &MapReader::size>(), "Points held, O(1).")
+      .def_property_readonly(
+          "config", [](const Holder& self) { return config_of(self); },
+          "The tree's Config (a copy: a tree's configuration is fixed).")
+      .def_property_readonly(
+          "pose",
+          [](const Holder& self) { return matrix_array(read<Holder, &MapReader::pose>()(self)); },
+          "The current sensor pose world_T_sensor as a 4x4 array (identity before the first "
+          "update).")
+      .def_property_readonly(
+          "ego_box",
+          [](const Holder& self) -> py::object {
+            const auto box = reading(self, [](const MapReader& t) { return t.ego_box(); });
+            if (box.isEmpty()) return py::none();
+            return py::make_tuple(vector_array(box.min()), vector_array(box.max()));
+          },
+          "The current ego box (lo, hi), world frame, half-open; None before the first update.")
+      .def_property_readonly(
+          "precision_origin",
+          [](const Holder& self) {
+            return vector_array(read<Holder, &MapReader::precision_origin>()(self));
+          },
+          "The world point that stored float coordinates are offsets from (a multiple of 1024 m).")
+      .def_property_readonly("time_origin", read<Holder, &MapReader::time_origin>(),
+                             "The time [s] stored times are offsets from (config.attributes.time; a multiple "
+                             "of 64 s within 128 s of the latest time taken in; 0 before any).")
+      .def_property_readonly("frame_count", read<Holder, &MapReader::frame_count>(),
+                             "Updates taken so far.");
+}
+
+constexpr const char* kSnapshotDoc =
+    R"(The map as it was when EgoOctree.snapshot() published it: the tree's query methods, with the
+same names, arguments and results, answering as the tree did at that frame whatever it does after
+(frame_count and pose name the frame). It never changes, so any number of Python threads may
+query it at once, without the GIL and without waiting for the tree's updates. What only snapshots
+hold (stats().snapshot_bytes) is given back when the last reference goes.)";
+
 }  // namespace
 
 void bind_tree(py::module_& m) {
-  py::class_<SharedTree>(m, "EgoOctree", kTreeDoc)
-      .def(py::init([](const py::object& config, const py::kwargs& fields) {
+  py::class_<SharedTree> tree(m, "EgoOctree", kTreeDoc);
+  tree.def(py::init([](const py::object& config, const py::kwargs& fields) {
              return std::make_unique<SharedTree>(
                  config_or_fields<Config>(config, fields, "EgoOctree"));
            }),
@@ -319,81 +460,13 @@ TypeError naming the argument) and leaves the tree unchanged.)")
           R"(update() with the relative motion previous_T_current (4x4 or 3x4): the new sensor
 pose expressed in the previous sensor frame. The first frame starts from the identity pose.
 ids, intensities, times: as for update().)")
-      .def("knn", &knn, py::arg("queries"), py::arg("k"), py::arg("frame") = Frame::World,
-           py::arg("workers") = 1, py::kw_only(), py::arg("return_ids") = false,
-           R"(The k nearest held points to each query, nearest first, exact.
-
-queries: (M, 3) float32/float64 array, or one (3,) point.
-Returns (points, sq_dists): (M, n, 3) and (M, n) float64 arrays ((n, 3) and (n,) for one
-point), n = min(k, len(tree)): k is clamped to the points held (SciPy pads with inf instead).
-frame: Frame.World (default) or Frame.Ego (world axes, origin at the sensor), or its name.
-workers: threads sharing the batch (default 1; -1: one per core). Answers do not depend on it.
-return_ids: return (sq_dists, ids) instead, ids the uint32 ids given to update() (needs
-    config.attributes.ids), in the shapes of sq_dists: scipy.spatial.cKDTree.query's (dists, idx)
-    with squared distances and the caller's ids in place of row indices.)")
-      .def("radius", &radius, py::arg("queries"), py::arg("radius"),
-           py::arg("frame") = Frame::World, py::arg("workers") = 1, py::kw_only(), py::arg("return_ids") = false,
-           R"(Held points within `radius` metres (closed ball) of each query, nearest first.
-
-For one (3,) query returns (points (n, 3), sq_dists (n,)); for (M, 3) queries, a list of M
-such pairs. workers: as for knn(). return_ids: (sq_dists, ids) pairs instead, as for knn().)")
-      .def(
-          "box",
-          [](const SharedTree& self, const py::object& lo_value, const py::object& hi_value,
-             const py::object& frame_value, bool attributes) -> py::object {
-            const Eigen::Vector3d lo = vector3_arg(lo_value, "lo");
-            const Eigen::Vector3d hi = vector3_arg(hi_value, "hi");
-            const Frame frame = enum_arg<Frame>(frame_value, "frame");
-            if (attributes) {
-              return with_attributes(self.tree.config().attributes, reading(self, [&](const EgoOctree& t) {
-                                       return t.box_with_attributes(lo, hi, frame);
-                                     }));
-            }
-            return rows_array(
-                reading(self, [&](const EgoOctree& t) { return t.box(lo, hi, frame); }));
-          },
-          py::arg("lo"), py::arg("hi"), py::arg("frame") = Frame::World, py::kw_only(),
-          py::arg("attributes") = false,
-          "Held points inside the closed box [lo, hi] (3-vectors), as an (n, 3) array in no "
-          "particular order. attributes=True: (points, attributes), attributes a dict of the kept "
-          "ones' (n,) arrays, in the points' order: 'ids' uint32, 'intensities' float32, 'times' float64.")
-      .def(
-          "voxelize",
-          [](const SharedTree& self, const py::object& resolution, const py::object& frame_value) {
-            const double res = number_arg(resolution, "resolution");
-            const Frame frame = enum_arg<Frame>(frame_value, "frame");
-            return rows_array(
-                reading(self, [&](const EgoOctree& t) { return t.voxelize(res, frame); }));
-          },
-          py::arg("resolution"), py::arg("frame") = Frame::World,
-          "Centres of the occupied voxels of the world-aligned grid of side `resolution` [m], "
-          "as a (V, 3) array in key order.")
-      .def(
-          "voxel_keys",
-          [](const SharedTree& self, const py::object& resolution) {
-            const double res = number_arg(resolution, "resolution");
-            return keys_array(reading(self, [&](const EgoOctree& t) { return t.voxel_keys(res); }));
-          },
-          py::arg("resolution"),
-          "Integer keys (V, 3) int64 of the occupied voxels, unique, in no particular order (the "
-          "tree's): voxel i spans [i*resolution, (i+1)*resolution) per axis. Fastest when "
-          "resolution is config.voxel_size * 2^i (then nodes are visited, not points).")
-      .def(
-          "points",
-          [](const SharedTree& self, bool attributes) -> py::object {
-            if (attributes) {
-              return with_attributes(self.tree.config().attributes, read<&EgoOctree::points_with_attributes>()(self));
-            }
-            return rows_array(read<&EgoOctree::points>()(self));
-          },
-          py::kw_only(), py::arg("attributes") = false,
-          "Every held point, world frame, as an (N, 3) float64 array in no particular order. "
-          "attributes=True: (points, attributes) as box() gives them.")
       .def(
           "save",
           [](const SharedTree& self, const py::object& path) {
             const std::string file = py::str(py::module_::import("os").attr("fspath")(path));
-            reading(self, [&](const EgoOctree& t) { t.save(file); });
+            py::gil_scoped_release no_gil;
+            const std::shared_lock lock(self.mutex);
+            self.tree.save(file);
           },
           py::arg("path"),
           "Writes the whole map (configuration, pose, origins, frame counter and clock, the held "
@@ -412,46 +485,38 @@ such pairs. workers: as for knn(). return_ids: (sq_dists, ids) pairs instead, as
           "stays identical to it. Raises RuntimeError naming the path and the byte offset of what "
           "is not a map (wrong magic or version, checksum mismatch, truncated file); nothing is "
           "loaded.")
-      .def("stats", read<&EgoOctree::stats>(), "What the tree holds now (a Stats; O(nodes)).")
-      .def("check_invariants", read<&EgoOctree::check_invariants>(),
-           "Checks every structural invariant; returns '' when all hold, else the first violation.")
-      .def("__len__", read<&EgoOctree::size>(), "Points held.")
-      .def_property_readonly("size", read<&EgoOctree::size>(), "Points held, O(1).")
-      .def_property_readonly("last_update", read<&EgoOctree::last_update>(),
-                             "The UpdateStats of the last update.")
       .def_property_readonly(
-          "config", [](const SharedTree& self) { return self.tree.config(); },
-          "The tree's Config (a copy: a tree's configuration is fixed).")
-      .def_property_readonly(
-          "pose",
-          [](const SharedTree& self) { return matrix_array(read<&EgoOctree::pose>()(self)); },
-          "The current sensor pose world_T_sensor as a 4x4 array (identity before the first "
-          "update).")
-      .def_property_readonly(
-          "ego_box",
-          [](const SharedTree& self) -> py::object {
-            const auto box = reading(self, [](const EgoOctree& t) { return t.ego_box(); });
-            if (box.isEmpty()) return py::none();
-            return py::make_tuple(vector_array(box.min()), vector_array(box.max()));
-          },
-          "The current ego box (lo, hi), world frame, half-open; None before the first update.")
-      .def_property_readonly(
-          "precision_origin",
+          "last_update",
           [](const SharedTree& self) {
-            return vector_array(read<&EgoOctree::precision_origin>()(self));
+            py::gil_scoped_release no_gil;
+            const std::shared_lock lock(self.mutex);
+            return UpdateStats(self.tree.last_update());
           },
-          "The world point that stored float coordinates are offsets from (a multiple of 1024 m).")
-      .def_property_readonly("time_origin", read<&EgoOctree::time_origin>(),
-                             "The time [s] stored times are offsets from (config.attributes.time; a multiple "
-                             "of 64 s within 128 s of the latest time taken in; 0 before any).")
-      .def_property_readonly("frame_count", read<&EgoOctree::frame_count>(),
-                             "Updates taken so far.")
+          "The UpdateStats of the last update.")
+      .def(
+          "snapshot",
+          [](SharedTree& self) {
+            py::gil_scoped_release no_gil;
+            const std::unique_lock lock(self.mutex);
+            return SnapshotHandle{self.tree.snapshot()};
+          },
+          "An immutable Snapshot of the map as it is now, for readers on other threads: it answers "
+          "every query as the tree does now, whatever the tree does after. It costs a reference per "
+          "4 KiB page of points and a copy of the nodes, not a copy of the map.")
       .def("__repr__", [](const SharedTree& self) {
         const auto [points, frames] =
-            reading(self, [](const EgoOctree& t) { return std::pair(t.size(), t.frame_count()); });
+            reading(self, [](const MapReader& t) { return std::pair(t.size(), t.frame_count()); });
         return "EgoOctree(points=" + std::to_string(points) + ", frames=" + std::to_string(frames) +
                ", box_side=" + std::string(py::repr(py::float_(self.tree.config().box_side))) + ")";
       });
+  def_queries(tree);
+
+  py::class_<SnapshotHandle> snapshot(m, "Snapshot", kSnapshotDoc);
+  def_queries(snapshot);
+  snapshot.def("__repr__", [](const SnapshotHandle& self) {
+    return "Snapshot(points=" + std::to_string(self.snapshot->size()) +
+           ", frame=" + std::to_string(self.snapshot->frame_count()) + ")";
+  });
 }
 
 }  // namespace eco::python

@@ -130,7 +130,9 @@ def test_results_are_records():
     assert (update.scan_points, update.inserted, update.skipped_nonfinite, update.skipped_by_policy) == (3, 1, 1, 1)
     stats = tree.stats()
     assert stats.points == 1 and stats.leaves == 1 and stats.bytes > 0
-    assert set(stats.to_dict()) == {"points", "nodes", "leaves", "mean_leaf_depth", "max_leaf_depth", "bytes"}
+    assert set(stats.to_dict()) == {
+        "points", "nodes", "leaves", "mean_leaf_depth", "max_leaf_depth", "bytes", "snapshot_bytes"
+    }
     with pytest.raises(AttributeError):
         stats.points = 3
 

@@ -59,9 +59,9 @@ void Tree::insert_points(std::span<Point> batch) {
     } else {
       insert_range(id, cell, group, group + m, temp + first[b]);
     }
-    const Node& top = nodes_[id];
+    const Node top = nodes_[id];
     for (std::uint32_t up = top.parent; up != kNone; up = nodes_[up].parent) {
-      Node& n = nodes_[up];
+      Node& n = nodes_.edit(up);
       n.count += m;
       n.bounds.merge(top.bounds);
       n.oldest = std::min(n.oldest, top.oldest);
@@ -101,7 +101,7 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
   const auto m = std::uint32_t(to - from);
   Added added;
   if (nodes_[id].leaf && (nodes_[id].count + m <= cfg_.leaf_capacity || cell.depth >= lattice_.max_depth)) {
-    Node& n = nodes_[id];
+    Node& n = nodes_.edit(id);
     points_.append(n.link, id, n.count, from, to);
     n.count += m;
     for (const Point* s = from; s != to; ++s) {
@@ -149,8 +149,9 @@ Tree::Added Tree::insert_range(std::uint32_t id, const Cell& cell, Point* from, 
     const std::uint32_t ch = child_or_new(id, cell, o);
     added.merge(insert_range(ch, lattice_.child(cell, o), temp + lo, temp + hi, from + lo));
   }
-  nodes_[id].count += m;
-  added.add_to(nodes_[id]);
+  Node& n = nodes_.edit(id);
+  n.count += m;
+  added.add_to(n);
   return added;
 }
 
@@ -165,7 +166,7 @@ std::uint32_t Tree::child_or_new(std::uint32_t id, const Cell& cell, int octant)
   if (ch != kNone) return ch;
   const int depth = cell.depth + 1;
   ch = nodes_.make_leaf(id, octant, depth);
-  nodes_.child(id, octant) = ch;
+  nodes_.edit_child(id, octant) = ch;
   if (depth < min_leaf_depth_) nodes_.make_inner(ch);
   note_created(ch, lattice_.child(cell, octant));
   return ch;
@@ -173,7 +174,7 @@ std::uint32_t Tree::child_or_new(std::uint32_t id, const Cell& cell, int octant)
 
 void Tree::split(std::uint32_t id, const Cell& cell, const std::array<std::uint32_t, 8>& incoming) {
   const std::uint32_t m = nodes_[id].count;
-  std::uint32_t block = std::exchange(nodes_[id].link, kNone);  // released once the children hold its points
+  std::uint32_t block = std::exchange(nodes_.edit(id).link, kNone);  // released once the children hold its points
   nodes_.make_inner(id);
   const PointSpan points = points_.span(block, m);
   // Each point's octant found once, then the points' indices grouped by octant (a counting sort):
@@ -197,7 +198,7 @@ void Tree::split(std::uint32_t id, const Cell& cell, const std::array<std::uint3
     if (own == 0) continue;
     const std::uint32_t child = child_or_new(id, cell, o);
     const std::uint32_t all = own + incoming[std::size_t(o)];
-    Node& n = nodes_[child];
+    Node& n = nodes_.edit(child);
     points_.append_picked(n.link, child, 0, points, grouped + begin[std::size_t(o)], own,
                           all <= cfg_.leaf_capacity ? all : 0);
     n.count = own;

@@ -1,6 +1,6 @@
 #pragma once
 // Contiguous, index-addressed node storage with free lists: no allocation per node in steady
-// state, O(1) release.
+// state, O(1) release. Nodes are read with [] and child(), written through edit() and edit_child().
 
 #include "core/geometry.hpp"
 #include "core/mapped_memory.hpp"
@@ -75,9 +75,11 @@ class NodeStore {
     --live_;
   }
 
-  Node& operator[](std::uint32_t id) { return nodes_[id]; }
   const Node& operator[](std::uint32_t id) const { return nodes_[id]; }
-  std::uint32_t& child(std::uint32_t id, int octant) { return blocks_[nodes_[id].link].child[octant]; }
+  /// Node `id` to write.
+  Node& edit(std::uint32_t id) { return nodes_[id]; }
+  /// Child slot `octant` of inner node `id` to write.
+  std::uint32_t& edit_child(std::uint32_t id, int octant) { return blocks_[nodes_[id].link].child[octant]; }
   [[nodiscard]] std::uint32_t child(std::uint32_t id, int octant) const {
     return blocks_[nodes_[id].link].child[octant];
   }
@@ -106,6 +108,16 @@ class NodeStore {
   [[nodiscard]] std::size_t bytes() const {
     return nodes_.capacity() * sizeof(Node) + blocks_.capacity() * sizeof(ChildBlock) +
            (free_nodes_.capacity() + free_blocks_.capacity()) * sizeof(std::uint32_t);
+  }
+
+  /// A copy to be read only (a snapshot's), without free lists: nodes are a tenth of a map's
+  /// bytes or less, and kept contiguous so that a query reads a node with one load.
+  [[nodiscard]] NodeStore share() const {
+    NodeStore copy;
+    copy.nodes_ = nodes_;
+    copy.blocks_ = blocks_;
+    copy.live_ = live_;
+    return copy;
   }
 
  private:

@@ -4,10 +4,13 @@
 // to back with no pointer chase. Blocks come in size classes growing by about 1.2-1.33x; each class
 // is a pool of fixed-size pages with a free list, so growing a pool never moves or copies what it
 // holds. A block begins with the id of the leaf it was last handed to, so that a map that shrank
-// can move its blocks down and give the emptied pages back (compact()).
+// can move its blocks down and give the emptied pages back (compact()). The pages are shared with
+// snapshots (core/shared_pages.hpp): a block is written only through write_block(), which copies
+// a page a snapshot holds.
 
 #include "core/mapped_memory.hpp"
 #include "core/node_store.hpp"
+#include "core/shared_pages.hpp"
 
 #include <algorithm>
 #include <array>
@@ -16,7 +19,9 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <stdexcept>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -71,7 +76,26 @@ struct PointSpan {
 
 class PointStore {
  public:
-  explicit PointStore(Columns columns = {}) : columns_(columns) {}
+  explicit PointStore(Columns columns = {}, std::shared_ptr<PageLedger> ledger = std::make_shared<PageLedger>())
+      : columns_(columns), ledger_(std::move(ledger)) {}
+
+  /// A store over the same pages, to be read only (a snapshot's): nothing is copied until this
+  /// store writes a page. It has no free lists.
+  [[nodiscard]] PointStore share() {
+    PointStore copy(columns_, ledger_);
+    copy.pools_.resize(pools_.size());
+    for (std::size_t c = 0; c < pools_.size(); ++c) {
+      Pool& to = copy.pools_[c];
+      const Pool& from = pools_[c];
+      std::tie(to.block_bytes, to.per_page_shift, to.used) = std::tie(from.block_bytes, from.per_page_shift, from.used);
+      to.pages = pools_[c].pages.share();
+    }
+    return copy;
+  }
+  /// Lets go of the pages a write copied (core/shared_pages.hpp).
+  void release_replaced() {
+    for (Pool& p : pools_) p.pages.release_replaced();
+  }
 
   /// Appends [first, last) (StoredPoints, or BarePoints when no column is kept) to the block at
   /// `link` that holds `count` points (kNone: no block yet), of node `owner` (compact() tells it
@@ -83,7 +107,7 @@ class PointStore {
     const auto m = std::uint32_t(last - first);
     if (m == 0) return;
     reserve(link, owner, count, count + m, room);
-    Block b = block(link);
+    const Block b = write_block(link);
     // column by column: each loop writes one array, with no test per point
     float* x = b.x + count;
     float* y = x + b.capacity;
@@ -139,11 +163,17 @@ class PointStore {
   template <class Keep>
   std::uint32_t retain(std::uint32_t& link, std::uint32_t count, Keep&& keep) {
     if (link == kNone) return 0;
-    Block b = block(link);
+    const Block from = block(link);
+    std::optional<Block> to;  // written from the first point that goes: a block that keeps all stays shared
     std::uint32_t kept = 0;
     for (std::uint32_t i = 0; i < count; ++i) {
-      const StoredPoint s = read(b, i);
-      if (keep(s)) write(b, kept++, s);
+      const StoredPoint s = read(from, i);
+      if (!keep(s)) {
+        if (!to) to = write_block(link);
+        continue;
+      }
+      if (to) write(*to, kept, s);
+      ++kept;
     }
     if (kept == 0) {
       release(link);
@@ -156,7 +186,7 @@ class PointStore {
   /// Adds `shift` [s] to the times of the `count` points at `link` (rounded once more to float).
   void shift_times(std::uint32_t link, std::uint32_t count, double shift) {
     if (link == kNone || !columns_.times) return;
-    float* times = block(link).times;
+    float* times = write_block(link).times;
     for (std::uint32_t i = 0; i < count; ++i) times[i] = float(double(times[i]) + shift);
   }
 
@@ -176,10 +206,7 @@ class PointStore {
   [[nodiscard]] const Columns& columns() const { return columns_; }
   [[nodiscard]] std::size_t bytes() const {
     std::size_t total = pools_.capacity() * sizeof(Pool);
-    for (const Pool& p : pools_) {
-      total += p.pages.size() * p.page_bytes + p.pages.capacity() * sizeof(p.pages[0]) +
-               p.free.capacity() * sizeof(std::uint32_t);
-    }
+    for (const Pool& p : pools_) total += p.pages.bytes() + p.free.capacity() * sizeof(std::uint32_t);
     return total;
   }
 
@@ -222,15 +249,14 @@ class PointStore {
         const std::uint32_t to = p.free.back();
         p.free.pop_back();
         const std::uint32_t to_link = std::uint32_t(c) << kIndexBits | to;
-        std::memcpy(address(to_link), address(from_link), p.block_bytes);  // its owner too
+        std::memcpy(writable(to_link), address(from_link), p.block_bytes);  // its owner too
         relink(owner, to_link);
         --p.used;
         done += p.block_bytes;
       }
       std::erase_if(p.free, [&](std::uint32_t i) { return i >= p.used; });
       const std::size_t pages = (std::size_t(p.used) + (std::size_t{1} << p.per_page_shift) - 1) >> p.per_page_shift;
-      p.pages.erase(p.pages.begin() + std::ptrdiff_t(pages), p.pages.end());  // the emptied pages go back
-      if (4 * p.pages.size() < p.pages.capacity()) p.pages.shrink_to_fit();
+      p.pages.resize_down(pages);  // the emptied pages go back
       if (4 * p.free.size() < p.free.capacity()) p.free.shrink_to_fit();
     }
     return done;
@@ -267,8 +293,7 @@ class PointStore {
   struct Pool {
     std::size_t block_bytes = 0;
     std::uint32_t per_page_shift = 0;  // blocks per page = 2^shift
-    std::size_t page_bytes = 0;  // whole pages of the system's
-    MappedVector<MappedPage> pages;
+    PageTable pages;  // of whole pages of the system's
     std::uint32_t used = 0;  // blocks handed out so far, free or not
     MappedVector<std::uint32_t> free;
   };
@@ -286,15 +311,27 @@ class PointStore {
 
   /// A block starts with the node it was last handed to (compact() asks it), then its columns.
   static constexpr std::size_t kOwnerBytes = sizeof(std::uint32_t);
-  /// Where the block at `link` starts.
-  [[nodiscard]] std::byte* address(std::uint32_t link) const {
+  /// Where the block at `link` starts, to read.
+  [[nodiscard]] const std::byte* address(std::uint32_t link) const {
     const Pool& p = pools_[std::size_t(class_of(link))];
     const std::uint32_t i = index_of(link);
-    return p.pages[i >> p.per_page_shift].get() + (i & ((1u << p.per_page_shift) - 1)) * p.block_bytes;
+    return p.pages.read(i >> p.per_page_shift) + (i & ((1u << p.per_page_shift) - 1)) * p.block_bytes;
   }
+  /// The same to write (its page copied first while a snapshot holds it).
+  [[nodiscard]] std::byte* writable(std::uint32_t link) {
+    Pool& p = pools_[std::size_t(class_of(link))];
+    const std::uint32_t i = index_of(link);
+    return p.pages.write(i >> p.per_page_shift) + (i & ((1u << p.per_page_shift) - 1)) * p.block_bytes;
+  }
+  /// The block at `link`, to read only.
   [[nodiscard]] Block block(std::uint32_t link) const {
-    const int c = class_of(link);
-    std::byte* at = address(link) + kOwnerBytes;
+    return layout(const_cast<std::byte*>(address(link)), class_of(link));  // NOLINT: read only
+  }
+  /// The block at `link`, to write.
+  [[nodiscard]] Block write_block(std::uint32_t link) { return layout(writable(link), class_of(link)); }
+  /// The columns of a block of class c at `start`.
+  [[nodiscard]] Block layout(std::byte* start, int c) const {
+    std::byte* at = start + kOwnerBytes;
     const std::uint32_t cap = capacity_of(c);
     std::byte* column = at + 3 * sizeof(float) * cap;  // the kept columns follow x, y, z in order
     auto next = [&]<class T>(bool kept, T*) -> T* {
@@ -317,7 +354,7 @@ class PointStore {
                       std::uint32_t n, std::uint32_t room, Copy&& copy) {
     if (n == 0) return;
     reserve(link, owner, count, count + n, room);
-    const Block b = block(link);
+    const Block b = write_block(link);
     const auto column = [&](auto* to, const auto* from) {
       if (from != nullptr) copy(to + count, from);  // null: a column not kept
     };
@@ -357,7 +394,7 @@ class PointStore {
   void move_to(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, int c) {
     const std::uint32_t fresh = take(c, owner);
     if (link != kNone) {
-      copy_points(block(link), block(fresh), count);
+      copy_points(block(link), write_block(fresh), count);
       release(link);
     }
     link = fresh;
@@ -375,15 +412,14 @@ class PointStore {
     Pool& p = pools_[std::size_t(c)];
     if (p.block_bytes == 0) {
       p.block_bytes = kOwnerBytes + std::size_t(capacity_of(c)) * std::size_t(3 + columns_.count()) * sizeof(float);
-      while ((p.block_bytes << (p.per_page_shift + 1)) <= kPageBytes) ++p.per_page_shift;
+      while (kPageHeaderBytes + (p.block_bytes << (p.per_page_shift + 1)) <= kPageBytes) ++p.per_page_shift;
       // a page is mapped in whole pages of the system's (core/mapped_memory.hpp): more blocks a
       // page until at most an eighth of it is left over, or it spans kMostPageBytes
       const auto mapped = [](std::size_t bytes) { return (bytes + kPageBytes - 1) / kPageBytes * kPageBytes; };
       const auto wasteful = [&](std::size_t bytes) { return 8 * (mapped(bytes) - bytes) > mapped(bytes); };
-      while (wasteful(p.block_bytes << p.per_page_shift) && (p.block_bytes << p.per_page_shift) < kMostPageBytes) {
-        ++p.per_page_shift;
-      }
-      p.page_bytes = mapped(p.block_bytes << p.per_page_shift);
+      const auto page = [&] { return kPageHeaderBytes + (p.block_bytes << p.per_page_shift); };
+      while (wasteful(page()) && page() < kMostPageBytes) ++p.per_page_shift;
+      p.pages = PageTable(mapped(page()), ledger_);
     }
     std::uint32_t i;
     if (!p.free.empty()) {
@@ -391,17 +427,16 @@ class PointStore {
       p.free.pop_back();
     } else {
       if (p.used > kIndexMask) throw std::length_error("eco: too many point blocks of one size");
-      if ((p.used >> p.per_page_shift) == p.pages.size()) {
-        p.pages.emplace_back(p.page_bytes);
-      }
+      if ((p.used >> p.per_page_shift) == p.pages.size()) p.pages.push_back();
       i = p.used++;
     }
     const std::uint32_t link = std::uint32_t(c) << kIndexBits | i;
-    std::memcpy(address(link), &owner, sizeof owner);  // in the block's first line, written next anyway
+    std::memcpy(writable(link), &owner, sizeof owner);  // in the block's first line, written next anyway
     return link;
   }
 
   Columns columns_;
+  std::shared_ptr<PageLedger> ledger_;
   MappedVector<Pool> pools_;
 };
 

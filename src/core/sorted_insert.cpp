@@ -80,8 +80,9 @@ Tree::Added Tree::descend_sorted(std::uint32_t id, const Cell& cell, int level, 
     added.merge(descend_sorted(ch, lattice_.child(cell, int(octant)), level + 1, from + begin, from + end,
                                temp + begin, codes + begin));
   }
-  nodes_[id].count += m;
-  added.add_to(nodes_[id]);
+  Node& n = nodes_.edit(id);
+  n.count += m;
+  added.add_to(n);
   return added;
 }
 

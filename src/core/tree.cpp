@@ -15,8 +15,10 @@ namespace eco::detail {
 
 Tree::Tree(const Config& config)
     : cfg_(config),
+      ledger_(std::make_shared<PageLedger>()),
       points_(Columns{config.max_age_frames > 0, config.attributes.ids, config.attributes.intensity,
-                      config.attributes.time}),
+                      config.attributes.time},
+              ledger_),
       density_(config.density_cap.max_points) {
   cfg_.validate();
   min_leaf_depth_ = min_leaf_depth(cfg_);
@@ -24,6 +26,23 @@ Tree::Tree(const Config& config)
   lattice_.max_depth = cfg_.max_depth();
   age_ = AgeLimit::of(cfg_, motion_);
 }
+
+Tree::Tree(Tree& live, Sharing)
+    : cfg_(live.cfg_),
+      ledger_(live.ledger_),
+      nodes_(live.nodes_.share()),
+      points_(live.points_.share()),
+      root_(live.root_),
+      root_cell_(live.root_cell_),
+      lattice_(live.lattice_),
+      min_leaf_depth_(live.min_leaf_depth_),
+      keeps_subcells_(live.keeps_subcells_),
+      motion_(live.motion_),
+      age_(live.age_),
+      density_(cfg_.density_cap.max_points),
+      own_bytes_(ledger_, nodes_.bytes()) {}
+
+std::unique_ptr<const Tree> Tree::share() { return std::unique_ptr<const Tree>(new Tree(*this, Sharing{})); }
 
 std::size_t Tree::bytes() const {
   return sizeof(Tree) + nodes_.bytes() + points_.bytes() + start_.slots.capacity() * sizeof(std::uint32_t) +
@@ -40,7 +59,7 @@ void Tree::set_motion(const Motion& m) {
 void Tree::shift_times(double shift) {
   const bool keyed = cfg_.max_age_seconds > 0.0;  // node age keys are read from the times
   auto walk = [&](auto&& self, std::uint32_t id) -> void {
-    Node& n = nodes_[id];
+    const Node& n = nodes_[id];
     if (n.leaf) {
       points_.shift_times(n.link, n.count, shift);
     } else {
@@ -60,12 +79,17 @@ void Tree::recount_density(const std::vector<StoredPoint>& held) {
 }
 
 void Tree::give_back_memory(std::size_t floor) {
+  compact_points(floor);
+  points_.release_replaced();
+}
+
+void Tree::compact_points(std::size_t floor) {
   const std::size_t free = points_.free_bytes();
   if (free == 0 || free < floor || free * kFreeShare < points_.bytes()) return;
   const auto holds = [&](std::uint32_t owner, std::uint32_t link) {
     return owner < nodes_.id_bound() && nodes_[owner].leaf && nodes_[owner].link == link;
   };
-  points_.compact(kCompactionBudget, holds, [&](std::uint32_t owner, std::uint32_t link) { nodes_[owner].link = link; });
+  points_.compact(kCompactionBudget, holds, [&](std::uint32_t owner, std::uint32_t link) { nodes_.edit(owner).link = link; });
 }
 
 std::size_t Tree::buffer_bytes() const {
@@ -107,9 +131,10 @@ void Tree::attach_subtree(std::uint32_t id, const Cell& cell) {
     at = lattice_.child(at, o);
   }
   const int o = lattice_.octant_of(at, cell);
-  nodes_.child(parent, o) = id;
-  nodes_[id].parent = parent;
-  nodes_[id].octant = static_cast<std::uint8_t>(o);
+  nodes_.edit_child(parent, o) = id;
+  Node& n = nodes_.edit(id);
+  n.parent = parent;
+  n.octant = static_cast<std::uint8_t>(o);
 }
 
 void Tree::relink_top(const Cell& new_root, int depth, std::vector<StoredPoint>& displaced, UpdateStats& stats) {
@@ -145,7 +170,7 @@ void Tree::refit_moved(std::uint32_t id, const Cell& cell, std::vector<StoredPoi
     // everything below moved out of its octant, or the subtree no longer fits it
     if (!fits) ++stats.rebuilt_subtrees;
     dissolve(ch, fits ? nullptr : &displaced);
-    nodes_.child(id, o) = kNone;
+    nodes_.edit_child(id, o) = kNone;
   });
   refit(id);
   collapse_if_small(id);
@@ -163,7 +188,7 @@ void Tree::refit_above(int depth) {
 void Tree::grow_root(int octant) {
   const std::int64_t side = lattice_.side(0);
   auto deepen = [&](auto&& self, std::uint32_t id) -> void {  // depths count from the root
-    ++nodes_[id].depth;
+    ++nodes_.edit(id).depth;
     if (nodes_[id].leaf) return;
     nodes_.for_each_child(id, [&](int, std::uint32_t ch) { self(self, ch); });
   };
@@ -183,9 +208,10 @@ void Tree::grow_root(int octant) {
   if (should_collapse(old_root)) collapse(old_root);  // a root may be small; a child may not
   root_ = nodes_.make_leaf(kNone, 0, 0);
   nodes_.make_inner(root_);
-  nodes_.child(root_, octant) = old_root;
-  nodes_[old_root].parent = root_;
-  nodes_[old_root].octant = static_cast<std::uint8_t>(octant);
+  nodes_.edit_child(root_, octant) = old_root;
+  Node& old = nodes_.edit(old_root);
+  old.parent = root_;
+  old.octant = static_cast<std::uint8_t>(octant);
   refit(root_);
 }
 
@@ -198,7 +224,7 @@ void Tree::make_root() {
 // Removal and repair
 
 void Tree::refit(std::uint32_t id) {
-  Node& n = nodes_[id];
+  const Node& n = nodes_[id];
   if (n.leaf) {
     // a point names its leaf's cell, whose subcells a leaf keeps in Quantised mode
     const PointSpan s = points_.span(n.link, n.count);
@@ -208,21 +234,20 @@ void Tree::refit(std::uint32_t id) {
   }
   Aabb bounds;
   std::uint32_t oldest = kNone;
-  {
-    std::uint32_t count = 0;
-    nodes_.for_each_child(id, [&](int, std::uint32_t ch) {
-      count += nodes_[ch].count;
-      bounds.merge(nodes_[ch].bounds);
-      oldest = std::min(oldest, nodes_[ch].oldest);
-    });
-    nodes_[id].count = count;
-  }
-  nodes_[id].bounds = bounds;
-  nodes_[id].oldest = oldest;
+  std::uint32_t count = 0;
+  nodes_.for_each_child(id, [&](int, std::uint32_t ch) {
+    count += nodes_[ch].count;
+    bounds.merge(nodes_[ch].bounds);
+    oldest = std::min(oldest, nodes_[ch].oldest);
+  });
+  Node& fitted = nodes_.edit(id);
+  fitted.count = count;
+  fitted.bounds = bounds;
+  fitted.oldest = oldest;
 }
 
 void Tree::fit_leaf(std::uint32_t id, const Subcells& quarters) {
-  Node& n = nodes_[id];
+  Node& n = nodes_.edit(id);
   const PointSpan s = points_.span(n.link, n.count);
   // column by column, each loop vector code; the age keys read only where a column holds them
   Aabb bounds;
@@ -243,7 +268,7 @@ void Tree::fit_leaf(std::uint32_t id, const Subcells& quarters) {
 
 void Tree::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
   if (id == root_) root_ = kNone;
-  Node& n = nodes_[id];
+  Node& n = nodes_.edit(id);
   if (n.leaf) {
     if (out) {
       points_.drain(n.link, n.count, *out);
@@ -285,7 +310,7 @@ void Tree::collapse(std::uint32_t id) {
   const std::size_t base = scratch.size();
   nodes_.for_each_child(id, [&](int, std::uint32_t ch) { dissolve(ch, &scratch); });
   nodes_.make_leaf_of_inner(id);
-  Node& n = nodes_[id];
+  Node& n = nodes_.edit(id);
   n.count = 0;
   points_.append(n.link, id, 0, scratch.data() + base, scratch.data() + scratch.size());
   n.count = std::uint32_t(scratch.size() - base);

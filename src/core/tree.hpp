@@ -20,6 +20,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <tuple>
@@ -58,6 +59,11 @@ class Tree {
   /// `config`. Throws std::invalid_argument naming the first part that does not fit (a count past
   /// the points left, a point outside its leaf's cell, an empty node, a broken invariant).
   Tree(const Config& config, const TreeParts& parts);
+  /// This tree as it is now, to be read only, from any thread, while this one goes on changing
+  /// (a snapshot). It shares every page of points (core/shared_pages.hpp), a reference a page,
+  /// and copies the nodes; this tree copies a page of points when it first writes it after the
+  /// call. The copy holds no start table, density counts or working buffers: reading needs none.
+  [[nodiscard]] std::unique_ptr<const Tree> share();
 
   // --- reading --------------------------------------------------------------------------------
   [[nodiscard]] const Config& config() const { return cfg_; }
@@ -72,6 +78,9 @@ class Tree {
   /// Of those, the working buffers' (core/working_buffers.hpp), kept between updates so that no
   /// frame pays for fresh pages.
   [[nodiscard]] std::size_t buffer_bytes() const;
+  /// Bytes only snapshots hold: their nodes, and the pages of points this tree has replaced since
+  /// (share()).
+  [[nodiscard]] std::size_t snapshot_bytes() const { return ledger_->snapshot_bytes(); }
   /// The current frame's motion (set_motion): pose, precision origin, box, frame number, clock.
   [[nodiscard]] const Motion& motion() const { return motion_; }
   /// The current frame's age limit.
@@ -91,7 +100,8 @@ class Tree {
   /// Gives back the memory a map that shrank holds in its point pools' free blocks, while it is
   /// at least a kFreeShare of them and `floor` bytes: the live blocks at the top of each pool move
   /// into free ones below, kCompactionBudget bytes an update at most, and the pages behind them
-  /// are released. No point changes, only where it lies.
+  /// are released. No point changes, only where it lies. Then lets go of the pages this update
+  /// replaced by copies (a snapshot's, freed when its last holder goes).
   void give_back_memory(std::size_t floor = kMemoryFloor);
 
   // --- insertion --------------------------------------------------------------------------------
@@ -141,7 +151,7 @@ class Tree {
   /// others leave the density counts.
   template <class Keep>
   void retain(std::uint32_t id, Keep&& keep) {
-    Node& n = nodes_[id];
+    Node& n = nodes_.edit(id);
     n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) {
       if (keep(s)) return true;
       forget(s);
@@ -182,10 +192,15 @@ class Tree {
   void grow_root(int octant);
 
  private:
+  struct Sharing {};
+  Tree(Tree& live, Sharing);
+
   static constexpr std::size_t kFreeShare = 8;
   static constexpr std::size_t kMemoryFloor = std::size_t{1} << 14;   // below, not worth it (four pages)
   static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
   static constexpr std::uint32_t kSortedGroup = 64;  // points below one start node worth sorting (insert_sorted)
+  /// give_back_memory's first part: the point pools' free blocks.
+  void compact_points(std::size_t floor);
   /// Calls f(const StoredPoint&) for every point below `id`.
   template <class F>
   void walk_points(std::uint32_t id, F&& f) const {
@@ -219,7 +234,7 @@ class Tree {
   /// appends its points to `out` if given.
   void dissolve(std::uint32_t id, std::vector<StoredPoint>* out);
   /// Unlinks child `octant` of inner node `id` (released, or handed on by dissolve/drop).
-  void unlink_child(std::uint32_t id, int octant) { nodes_.child(id, octant) = kNone; }
+  void unlink_child(std::uint32_t id, int octant) { nodes_.edit_child(id, octant) = kNone; }
   /// Recomputes count, bounds and oldest stamp of `id` from its points or children.
   void refit(std::uint32_t id);
   /// Turns inner node `id` into one leaf holding all the points below it when they are so few that
@@ -298,6 +313,7 @@ class Tree {
   void insert_points(std::span<Point> batch);
 
   Config cfg_;
+  std::shared_ptr<PageLedger> ledger_;  // the pages this tree and its snapshots hold
   NodeStore nodes_;
   PointStore points_;
   std::uint32_t root_ = kNone;
@@ -311,6 +327,7 @@ class Tree {
   CellCounts density_;  // points per density-cap cell, kept while the cap is on
   WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
   WorkingBuffers buffers_;
+  LedgerCharge own_bytes_;  // a snapshot's: its copy of the nodes
 };
 
 }  // namespace eco::detail

@@ -108,7 +108,7 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
                  " lies outside its leaf's cell or the ego box");
         }
       }
-      Node& leaf = nodes_[id];
+      Node& leaf = nodes_.edit(id);
       points_.append_span(leaf.link, id, 0, span);
       leaf.count = entry.count;
       next_point += entry.count;
@@ -116,7 +116,7 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
       if (cell.depth >= lattice_.max_depth) refuse("node " + std::to_string(index) + ": an inner node at the deepest level");
       nodes_.make_inner(id);
       for (int o = 0; o < 8; ++o) {
-        if (entry.children >> o & 1) nodes_.child(id, o) = self(self, id, o, lattice_.child(cell, o));
+        if (entry.children >> o & 1) nodes_.edit_child(id, o) = self(self, id, o, lattice_.child(cell, o));
       }
     }
     refit(id);

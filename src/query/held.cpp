@@ -28,6 +28,7 @@ Stats tree_stats(const Tree& t) {
   s.points = t.size();
   s.nodes = t.nodes().live();
   s.bytes = t.bytes();
+  s.snapshot_bytes = t.snapshot_bytes();
   if (t.root() == kNone) return s;
   double depth_sum = 0.0;
   auto walk = [&](auto&& self, std::uint32_t id) -> void {

@@ -35,10 +35,10 @@ TEST(NodeStore, InnerNodesStartWithEightEmptySlotsAndGiveTheirBlockBack) {
   nodes.make_inner(id);
   EXPECT_FALSE(nodes[id].leaf);
   for (int o = 0; o < 8; ++o) EXPECT_EQ(nodes.child(id, o), kNone);
-  nodes.child(id, 3) = nodes.make_leaf(id, 3, 1);
+  nodes.edit_child(id, 3) = nodes.make_leaf(id, 3, 1);
   EXPECT_EQ(nodes[nodes.child(id, 3)].parent, id);
   nodes.release(nodes.child(id, 3));
-  nodes.child(id, 3) = kNone;
+  nodes.edit_child(id, 3) = kNone;
   nodes.make_leaf_of_inner(id);
   EXPECT_TRUE(nodes[id].leaf);
   EXPECT_EQ(nodes[id].link, kNone);

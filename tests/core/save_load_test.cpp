@@ -2,6 +2,7 @@
 // the saved one did and, fed the same frames, stays identical to it; a file that is not a whole
 // map is refused naming its path and byte; a save that fails keeps the file it would replace.
 
+#include "support/map_answers.hpp"
 #include "support/temp_dir.hpp"
 
 #include <eco/ego_octree.hpp>
@@ -23,76 +24,6 @@
 namespace eco::test {
 namespace {
 
-sim::SimConfig small_drive(std::size_t frames) {
-  sim::SimConfig s;
-  s.seed = 8;
-  s.frames = frames;
-  s.lidar.beams = 16;
-  s.lidar.columns = 360;
-  s.city.moving_cars = 40;
-  return s;
-}
-
-/// Gives `scan` ids numbered per frame, intensities, and times 7.3 s apart a frame (the time
-/// origin moves every ~9 frames), kept in the three vectors.
-void add_attributes(ScanView& scan, std::size_t t, std::vector<std::uint32_t>& ids, std::vector<float>& intensities,
-                    std::vector<double>& times) {
-  const std::size_t n = scan.count;
-  ids.resize(n);
-  intensities.resize(n);
-  times.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    ids[i] = std::uint32_t(t * 100000 + i);
-    intensities[i] = float(i % 97);
-    times[i] = 1.7e9 + 7.3 * double(t) + 1e-5 * double(i);
-  }
-  scan.ids = ids.data();
-  scan.intensities = intensities.data();
-  scan.times = times.data();
-}
-
-void expect_same_neighbors(const std::vector<Neighbor>& a, const std::vector<Neighbor>& b, const std::string& what) {
-  ASSERT_EQ(a.size(), b.size()) << what;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].point, b[i].point) << what << ", neighbour " << i;
-    EXPECT_EQ(a[i].sq_dist, b[i].sq_dist) << what << ", neighbour " << i;
-    EXPECT_EQ(a[i].attributes, b[i].attributes) << what << ", neighbour " << i;
-  }
-}
-
-/// Every answer of `loaded` equals `saved`'s, in the same order: the held points, KNN, radius
-/// and box queries, voxel maps, the frame, pose and origins.
-void expect_identical(const EgoOctree& saved, const EgoOctree& loaded, std::mt19937& rng, const std::string& when) {
-  SCOPED_TRACE(when);
-  ASSERT_EQ(loaded.check_invariants(), "");
-  ASSERT_EQ(loaded.size(), saved.size());
-  EXPECT_EQ(loaded.frame_count(), saved.frame_count());
-  EXPECT_TRUE(loaded.pose().isApprox(saved.pose(), 0.0));
-  EXPECT_EQ(loaded.precision_origin(), saved.precision_origin());
-  EXPECT_EQ(loaded.time_origin(), saved.time_origin());
-  EXPECT_EQ(loaded.stats().points, saved.stats().points);
-  EXPECT_EQ(loaded.stats().nodes, saved.stats().nodes);
-  const std::vector<HeldPoint> a = saved.points_with_attributes(), b = loaded.points_with_attributes();
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    ASSERT_EQ(a[i].point, b[i].point) << "held point " << i;
-    ASSERT_EQ(a[i].attributes, b[i].attributes) << "held point " << i;
-  }
-  if (a.empty()) return;
-  std::uniform_int_distribution<std::size_t> pick(0, a.size() - 1);
-  std::normal_distribution<double> jitter(0.0, 0.3);
-  for (int q = 0; q < 20; ++q) {
-    const Eigen::Vector3d p = a[pick(rng)].point + Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng));
-    for (const std::size_t k : {1, 5, 40}) {
-      expect_same_neighbors(saved.knn(p, k), loaded.knn(p, k), "knn, k = " + std::to_string(k));
-    }
-    expect_same_neighbors(saved.radius(p, 1.5), loaded.radius(p, 1.5), "radius");
-    const Eigen::Vector3d lo = p - Eigen::Vector3d(2, 2, 1), hi = p + Eigen::Vector3d(2, 2, 1);
-    EXPECT_EQ(saved.box(lo, hi), loaded.box(lo, hi)) << "box";
-  }
-  for (const double res : {0.1, 0.35}) EXPECT_EQ(saved.voxel_keys(res), loaded.voxel_keys(res)) << "voxels " << res;
-}
-
 using Params = std::tuple<Recentring, bool>;  // re-centring; clearing, density cap, attributes and age limit
 
 class SaveLoad : public ::testing::TestWithParam<Params> {};
@@ -106,18 +37,7 @@ TEST_P(SaveLoad, EveryFrameRoundTripsAndTheCopyContinuesIdentically) {
   Config cfg;
   cfg.recentring = recentring;
   cfg.box_side = 40.0;
-  if (everything) {
-    cfg.clearing.enabled = true;
-    cfg.sensor.vertical_fov_min = drive.config().lidar.fov_down_deg - 0.5;
-    cfg.sensor.vertical_fov_max = drive.config().lidar.fov_up_deg + 0.5;
-    cfg.sensor.vertical_resolution =
-        (drive.config().lidar.fov_up_deg - drive.config().lidar.fov_down_deg) / (drive.config().lidar.beams - 1);
-    cfg.sensor.horizontal_resolution = 2.0;
-    cfg.sensor.max_range = 60.0;
-    cfg.density_cap = {0.3, 2};
-    cfg.attributes = {true, true, true};
-    cfg.max_age_seconds = 20.0;
-  }
+  if (everything) with_everything(cfg, drive);
   TempDir dir("eco-save-load");
   const std::string path = (dir / "map.eco").string();
   EgoOctree tree(cfg);

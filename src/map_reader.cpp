@@ -1,0 +1,94 @@
+// The queries of a held map, for the live tree and its snapshots alike (src/query does the work).
+
+#include "core/invariants.hpp"
+#include "core/tree.hpp"
+#include "query/queries.hpp"
+
+#include <eco/map_reader.hpp>
+
+#include <algorithm>
+
+namespace eco {
+
+std::size_t MapReader::size() const { return held().size(); }
+
+const Config& MapReader::config() const { return held().config(); }
+const Eigen::Isometry3d& MapReader::pose() const { return held().motion().pose; }
+std::uint32_t MapReader::frame_count() const { return held().motion().frame; }
+Eigen::Vector3d MapReader::precision_origin() const { return held().motion().anchor; }
+double MapReader::time_origin() const { return held().motion().clock.seconds(0.0f); }
+
+Eigen::AlignedBox3d MapReader::ego_box() const {
+  if (held().motion().frame == 0) return Eigen::AlignedBox3d();  // empty
+  const detail::Box b = held().motion().box;
+  const Eigen::Vector3d anchor = held().motion().anchor;
+  return {Eigen::Vector3d(b.lo[0], b.lo[1], b.lo[2]) + anchor, Eigen::Vector3d(b.hi[0], b.hi[1], b.hi[2]) + anchor};
+}
+
+void MapReader::for_each_point(const std::function<void(const Eigen::Vector3d&)>& visit) const {
+  detail::for_each_held(held(), visit);
+}
+
+std::vector<Eigen::Vector3d> MapReader::points() const {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(size());
+  for_each_point([&](const Eigen::Vector3d& p) { out.push_back(p); });
+  return out;
+}
+
+std::vector<HeldPoint> MapReader::points_with_attributes() const { return detail::held_points(held()); }
+
+Stats MapReader::stats() const {
+  Stats s = detail::tree_stats(held());
+  s.bytes += bytes_beside_tree();
+  return s;
+}
+
+std::size_t MapReader::knn(const Eigen::Vector3d& query, std::span<Neighbor> out, Frame frame) const {
+  return detail::knn_query(held(), query, out, frame);
+}
+
+std::vector<Neighbor> MapReader::knn(const Eigen::Vector3d& query, std::size_t k, Frame frame) const {
+  std::vector<Neighbor> out(std::min<std::size_t>(k, size()));
+  out.resize(knn(query, std::span<Neighbor>(out), frame));
+  return out;
+}
+
+std::size_t MapReader::knn(const Eigen::Vector3d& query, std::span<std::uint32_t> ids, std::span<double> sq_dists,
+                          Frame frame) const {
+  return detail::knn_ids_query(held(), query, ids, sq_dists, frame);
+}
+
+std::vector<Neighbor> MapReader::radius(const Eigen::Vector3d& query, double radius, Frame frame) const {
+  return detail::radius_query(held(), query, radius, frame);
+}
+
+std::vector<Eigen::Vector3d> MapReader::box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, Frame frame) const {
+  return detail::box_query(held(), lo, hi, frame);
+}
+
+std::vector<HeldPoint> MapReader::box_with_attributes(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                                     Frame frame) const {
+  return detail::box_held_query(held(), lo, hi, frame);
+}
+
+std::vector<VoxelKey> MapReader::voxel_keys(double resolution) const {
+  return detail::voxel_keys_of(held(), resolution);
+}
+
+std::vector<Eigen::Vector3d> MapReader::voxelize(double resolution, Frame frame) const {
+  const std::vector<VoxelKey> keys = voxel_keys(resolution);
+  const Eigen::Vector3d shift = frame == Frame::Ego ? Eigen::Vector3d(pose().translation()) : Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> centres;
+  centres.reserve(keys.size());
+  for (const VoxelKey& k : keys) {
+    centres.push_back(Eigen::Vector3d((double(k.x) + 0.5) * resolution, (double(k.y) + 0.5) * resolution,
+                                      (double(k.z) + 0.5) * resolution) -
+                      shift);
+  }
+  return centres;
+}
+
+std::string MapReader::check_invariants() const { return detail::check_tree(held()); }
+
+}  // namespace eco
