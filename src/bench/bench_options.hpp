@@ -30,6 +30,7 @@ struct BenchOptions {
   std::uint64_t seed = 1;              ///< query draws; the simulator's seed when there is no data
   std::size_t sim_frames = 200;        ///< length of the default simulated drive
   bool check_every_frame = false;      ///< also run check_invariants() after every update (slow)
+  bool time_snapshots = false;         ///< then time publishing snapshots (bench/snapshot_timing.hpp)
 
   /// The paper's settings: L = 20 m, N_max = 8, ShiftInOnly.
   static Config paper_config() {

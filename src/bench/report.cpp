@@ -126,7 +126,19 @@ json summary_json(const BenchRun& run, const std::vector<MethodSummary>& summari
                             {"map_file_bytes", f.file_bytes},
                             {"map_point_bytes", f.point_bytes}});
   }
-  return {{"workload", to_string(run.options.workload)}, {"source", run.source}, {"methods", methods}};
+  json out = {{"workload", to_string(run.options.workload)}, {"source", run.source}, {"methods", methods}};
+  if (const auto& t = run.snapshots) {
+    out["snapshots"] = {{"frames", t->frames},
+                        {"update_alone_ms", t->update_alone_ms},
+                        {"update_read_ms", t->update_read_ms},
+                        {"publish_ms", t->publish_ms},
+                        {"knn_live_ms", t->knn_live_ms},
+                        {"knn_snapshot_ms", t->knn_snapshot_ms},
+                        {"bytes_alone", t->bytes_alone},
+                        {"bytes_with_snapshot", t->bytes_with_snapshot},
+                        {"reader_queries", t->reader_queries}};
+  }
+  return out;
 }
 
 const MethodSummary* find(const std::vector<MethodSummary>& summaries, const std::string& name) {
@@ -199,6 +211,16 @@ std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>
       << (f.point_bytes ? fixed(double(f.file_bytes) / double(f.point_bytes), 2) + "×" : std::string("–")) << " | "
       << fixed(f.save_ms, 2) << " | " << fixed(f.load_ms, 2) << " | " << fixed(f.raw_ms, 2) << " | "
       << fixed((f.save_ms + f.load_ms) / f.raw_ms, 2) << "× |\n";
+  }
+  if (const auto& t = run.snapshots) {
+    s << "\nSnapshots (a tree publishing one after every update and holding it a frame more, a reader thread "
+         "querying the last one during the update; against a tree alone; means over "
+      << t->frames << " frames):\n\n"
+      << "| publish / update | KNN on the snapshot / on the tree | update, read meanwhile / alone | "
+         "memory, one snapshot held / alone | reader's queries |\n|--:|--:|--:|--:|--:|\n"
+      << "| " << fixed(t->publish_ms / t->update_alone_ms, 3) << "× | " << fixed(t->knn_snapshot_ms / t->knn_live_ms, 2)
+      << "× | " << fixed(t->update_read_ms / t->update_alone_ms, 2) << "× | "
+      << fixed(t->bytes_with_snapshot / t->bytes_alone, 2) << "× | " << t->reader_queries << " |\n";
   }
   if (const MethodSummary* clearing = find(summaries, "eco_clearing")) {
     s << "\nFree-space clearing: eco_clearing update / eco " << ratio(clearing, &MethodSummary::update_ms, eco)

@@ -128,6 +128,7 @@ BenchRun run_bench(const BenchOptions& given, const Progress& progress) {
       run.methods[m].map_file = time_map_file(*tree);
     }
   }
+  if (options.time_snapshots) run.snapshots = time_snapshots(options, progress.status);
   run.seconds = std::chrono::duration<double>(Clock::now() - started).count() + (sink < 0 ? 1 : 0);
   return run;
 }

@@ -4,6 +4,7 @@
 
 #include "bench/bench_options.hpp"
 #include "bench/map_file_timing.hpp"
+#include "bench/snapshot_timing.hpp"
 
 #include <functional>
 #include <optional>
@@ -44,6 +45,7 @@ struct BenchRun {
   /// `octree_base` (the same points, rebuilt) on the static workload, `scan_only` (the current
   /// scan alone) on the dynamic one, added to the methods if they were not given it.
   std::string chamfer_reference;
+  std::optional<SnapshotTiming> snapshots;  ///< with BenchOptions::time_snapshots
   double seconds = 0.0;         ///< wall time of the run, loading included
 };
 

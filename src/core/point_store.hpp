@@ -5,8 +5,8 @@
 // is a pool of fixed-size pages with a free list, so growing a pool never moves or copies what it
 // holds. A block begins with the id of the leaf it was last handed to, so that a map that shrank
 // can move its blocks down and give the emptied pages back (compact()). The pages are shared with
-// snapshots (core/shared_pages.hpp): a block is written only through write_block(), which copies
-// a page a snapshot holds.
+// snapshots (core/shared_pages.hpp): a block is written through write_block(), which copies a
+// page a snapshot holds, or, past its points, through tail_block(), which does not.
 
 #include "core/mapped_memory.hpp"
 #include "core/node_store.hpp"
@@ -92,9 +92,11 @@ class PointStore {
     }
     return copy;
   }
-  /// Lets go of the pages a write copied (core/shared_pages.hpp).
-  void release_replaced() {
-    for (Pool& p : pools_) p.pages.release_replaced();
+  /// Lets go of the pages a write copied (core/shared_pages.hpp); returns their bytes.
+  std::size_t release_replaced() {
+    std::size_t bytes = 0;
+    for (Pool& p : pools_) bytes += p.pages.release_replaced();
+    return bytes;
   }
 
   /// Appends [first, last) (StoredPoints, or BarePoints when no column is kept) to the block at
@@ -107,7 +109,7 @@ class PointStore {
     const auto m = std::uint32_t(last - first);
     if (m == 0) return;
     reserve(link, owner, count, count + m, room);
-    const Block b = write_block(link);
+    const Block b = tail_block(link);
     // column by column: each loop writes one array, with no test per point
     float* x = b.x + count;
     float* y = x + b.capacity;
@@ -329,6 +331,11 @@ class PointStore {
   }
   /// The block at `link`, to write.
   [[nodiscard]] Block write_block(std::uint32_t link) { return layout(writable(link), class_of(link)); }
+  /// The block at `link`, to write past its points only (appending), with no copy of its page: a
+  /// snapshot reads a block no further than the points it held then, never more than it holds now
+  /// while the page is shared, since every write below them copies the page (write_block) and a
+  /// block handed out anew is written through writable() (take()).
+  [[nodiscard]] Block tail_block(std::uint32_t link) const { return block(link); }
   /// The columns of a block of class c at `start`.
   [[nodiscard]] Block layout(std::byte* start, int c) const {
     std::byte* at = start + kOwnerBytes;
@@ -354,7 +361,7 @@ class PointStore {
                       std::uint32_t n, std::uint32_t room, Copy&& copy) {
     if (n == 0) return;
     reserve(link, owner, count, count + n, room);
-    const Block b = write_block(link);
+    const Block b = tail_block(link);
     const auto column = [&](auto* to, const auto* from) {
       if (from != nullptr) copy(to + count, from);  // null: a column not kept
     };

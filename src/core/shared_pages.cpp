@@ -9,6 +9,10 @@ namespace eco::detail {
 namespace {
 
 PageHeader* new_page(std::size_t bytes, PageLedger* ledger) {
+  if (PageHeader* spare = ledger->take_spare(bytes)) {
+    spare->holders.store(1, std::memory_order_relaxed);
+    return spare;
+  }
   auto* page = new (allocate_bytes(bytes)) PageHeader;
   page->bytes = std::uint32_t(bytes);
   page->ledger = ledger;
@@ -74,9 +78,48 @@ void PageTable::count_live(std::ptrdiff_t pages) const {
   if (live_ && ledger_) ledger_->live_bytes.fetch_add(std::size_t(pages) * page_bytes_, std::memory_order_relaxed);
 }
 
-void PageTable::release_replaced() {
+std::size_t PageTable::release_replaced() {
+  const std::size_t bytes = replaced_.size() * page_bytes_;
   for (PageHeader* page : replaced_) let_go(page);
   replaced_.clear();
+  return bytes;
+}
+
+PageHeader* PageLedger::take_spare(std::size_t page_bytes) {
+  const std::lock_guard lock(mutex_);
+  for (std::size_t i = spare_.size(); i-- > 0;) {
+    if (spare_[i]->bytes != page_bytes) continue;
+    PageHeader* page = spare_[i];
+    spare_[i] = spare_.back();
+    spare_.pop_back();
+    spare_bytes_ -= page_bytes;
+    return page;
+  }
+  return nullptr;
+}
+
+void PageLedger::keep_spare(PageHeader* page) {
+  const std::lock_guard lock(mutex_);
+  spare_.push_back(page);
+  spare_bytes_ += page->bytes;
+}
+
+void PageLedger::trim_spare(std::size_t keep) {
+  std::vector<PageHeader*> gone;
+  {
+    const std::lock_guard lock(mutex_);
+    while (spare_bytes_ > keep && !spare_.empty()) {
+      gone.push_back(spare_.back());
+      spare_bytes_ -= spare_.back()->bytes;
+      spare_.pop_back();
+    }
+  }
+  for (PageHeader* page : gone) {
+    const std::size_t page_bytes = page->bytes;
+    bytes.fetch_sub(page_bytes, std::memory_order_relaxed);
+    page->~PageHeader();
+    release_bytes(page, page_bytes);
+  }
 }
 
 PageTable PageTable::share() {
@@ -103,10 +146,7 @@ void PageTable::unshare(std::size_t i) {
 void PageTable::let_go(PageHeader* page) const {
   // acq_rel: the last holder sees every other holder's reads finished before it frees the page
   if (page->holders.fetch_sub(1, std::memory_order_acq_rel) != 1) return;
-  const std::size_t bytes = page->bytes;
-  page->ledger->bytes.fetch_sub(bytes, std::memory_order_relaxed);
-  page->~PageHeader();
-  release_bytes(page, bytes);
+  page->ledger->keep_spare(page);
 }
 
 }  // namespace eco::detail

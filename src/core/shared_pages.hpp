@@ -14,13 +14,24 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace eco::detail {
 
-/// The bytes of the pages a tree and its snapshots hold: all of them, and those in the tree's own
-/// tables; the difference is what only snapshots keep alive.
-struct PageLedger {
+struct PageHeader;
+
+/// The bytes of the pages a tree and its snapshots hold: all of them (spare ones included), and
+/// those in the tree's own tables; the difference is what only snapshots keep alive. And the
+/// spare pages: let go by every holder, kept for the copies the next update makes, so that
+/// publishing every frame does not map and unmap pages every frame (trim_spare() bounds them).
+class PageLedger {
+ public:
+  PageLedger() = default;
+  PageLedger(const PageLedger&) = delete;
+  PageLedger& operator=(const PageLedger&) = delete;
+  ~PageLedger() { trim_spare(0); }
+
   std::atomic<std::size_t> bytes{0};
   std::atomic<std::size_t> live_bytes{0};
   [[nodiscard]] std::size_t snapshot_bytes() const {
@@ -28,6 +39,16 @@ struct PageLedger {
     const std::size_t all = bytes.load(std::memory_order_relaxed);
     return all > live ? all - live : 0;
   }
+  /// A spare page of `page_bytes`, or null.
+  [[nodiscard]] PageHeader* take_spare(std::size_t page_bytes);
+  void keep_spare(PageHeader* page);
+  /// Gives the spare pages back to the system but `keep` bytes of them.
+  void trim_spare(std::size_t keep);
+
+ private:
+  std::mutex mutex_;  // pages are let go on any thread
+  std::vector<PageHeader*> spare_;
+  std::size_t spare_bytes_ = 0;
 };
 
 /// A page's first bytes: who holds it, how large it is, whose ledger counts it.
@@ -67,9 +88,10 @@ class PageTable {
   /// Another table over the same pages, each now held once more; until this table writes a page,
   /// both read the same bytes. The new table must only be read.
   [[nodiscard]] PageTable share();
-  /// Lets go of the pages write() replaced by copies. They are kept until then so that what was
-  /// read from them before the copy stays readable (an update reads a block while writing others).
-  void release_replaced();
+  /// Lets go of the pages write() replaced by copies, and returns their bytes. They are kept until
+  /// then so that what was read from them before the copy stays readable (an update reads a block
+  /// while writing others).
+  std::size_t release_replaced();
   /// Bytes of the pages this table holds, and of its table.
   [[nodiscard]] std::size_t bytes() const {
     return pages_.size() * page_bytes_ + pages_.capacity() * sizeof(PageHeader*) + shared_.capacity();

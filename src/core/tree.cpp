@@ -80,7 +80,8 @@ void Tree::recount_density(const std::vector<StoredPoint>& held) {
 
 void Tree::give_back_memory(std::size_t floor) {
   compact_points(floor);
-  points_.release_replaced();
+  // what this update copied, the next will likely copy again: that much is kept spare
+  ledger_->trim_spare(points_.release_replaced());
 }
 
 void Tree::compact_points(std::size_t floor) {

@@ -101,7 +101,8 @@ class Tree {
   /// at least a kFreeShare of them and `floor` bytes: the live blocks at the top of each pool move
   /// into free ones below, kCompactionBudget bytes an update at most, and the pages behind them
   /// are released. No point changes, only where it lies. Then lets go of the pages this update
-  /// replaced by copies (a snapshot's, freed when its last holder goes).
+  /// replaced by copies (a snapshot's, spare when its last holder goes), and gives back the spare
+  /// pages beyond as many bytes as it copied (core/shared_pages.hpp).
   void give_back_memory(std::size_t floor = kMemoryFloor);
 
   // --- insertion --------------------------------------------------------------------------------

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 namespace eco::bench {
@@ -285,6 +286,36 @@ TEST(Bench, SummaryStatesClearingsFigureWhenEcoClearingRan) {
   EXPECT_NE(md.find("Free-space clearing: eco_clearing update / eco 1.75×, Chamfer 0.0625 m against eco's 0.1250 m."),
             std::string::npos)
       << md;
+}
+
+/// --snapshots times a publishing tree against a tree alone on the run's own frames, and the page
+/// and summary.json say what it measured: the reader ran, and the ratios are the means' ratios.
+TEST(Bench, SnapshotTimingRunsOnTheSameFramesAndIsReported) {
+  BenchOptions o;
+  o.methods = {"eco"};
+  o.sim_frames = 6;
+  o.knn_queries = 50;
+  o.config.insert_policy = InsertPolicy::AllInBox;
+  o.time_snapshots = true;
+  const BenchRun run = run_bench(o);
+  ASSERT_TRUE(run.snapshots.has_value());
+  const SnapshotTiming& t = *run.snapshots;
+  EXPECT_EQ(t.frames, 5u);  // the first frame left out
+  EXPECT_GT(t.reader_queries, 0u);
+  for (const double v : {t.update_alone_ms, t.update_read_ms, t.publish_ms, t.knn_live_ms, t.knn_snapshot_ms}) {
+    EXPECT_GT(v, 0.0);
+  }
+  EXPECT_GT(t.bytes_with_snapshot, t.bytes_alone) << "a snapshot a frame behind holds the pages changed since";
+  const std::vector<MethodSummary> summaries = summarize(run);
+  const std::string md = summary_tables(run, summaries);
+  std::ostringstream publish;
+  publish << std::fixed << std::setprecision(3) << t.publish_ms / t.update_alone_ms << "×";
+  EXPECT_NE(md.find("| " + publish.str() + " |"), std::string::npos) << md;
+  test::TempDir dir("eco-bench-snapshots");
+  write_results(dir.path(), run, "eco bench --snapshots");
+  const auto json = nlohmann::json::parse(std::ifstream(dir.path() / "summary.json"));
+  EXPECT_EQ(json.at("snapshots").at("frames").get<std::size_t>(), 5u);
+  EXPECT_DOUBLE_EQ(json.at("snapshots").at("knn_snapshot_ms").get<double>(), t.knn_snapshot_ms);
 }
 
 TEST(Bench, BadOptionsAreRejectedByName) {

@@ -43,6 +43,8 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--seed", o->seed, "query seed, and the simulator's without --data")->capture_default_str();
   cmd->add_option("--sim-frames", o->sim_frames, "length of the simulated drive without --data")->capture_default_str();
   cmd->add_flag("--check", o->check_every_frame, "check every method's invariants after every frame (slow)");
+  cmd->add_flag("--snapshots", o->time_snapshots,
+                "then time publishing a snapshot every frame, with a reader thread on it, against a tree alone");
   cmd->add_option("--preset", *preset,
                   "paper (Table II: ShiftInOnly, N_max 8), robot (raw scans: AllInBox, N_max 128, dynamic), "
                   "robot-cap-0.2 (+ 1 point per 0.2 m cell, voxel 0.2), robot-cap-0.1 (+ 2 per 0.1 m, voxel 0.1); "
