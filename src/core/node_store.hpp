@@ -4,10 +4,13 @@
 
 #include "core/geometry.hpp"
 #include "core/mapped_memory.hpp"
+#include "core/shared_pages.hpp"
 
 #include <array>
 #include <cassert>
 #include <cstdint>
+#include <mutex>
+#include <utility>
 #include <vector>
 
 namespace eco::detail {
@@ -110,14 +113,16 @@ class NodeStore {
            (free_nodes_.capacity() + free_blocks_.capacity()) * sizeof(std::uint32_t);
   }
 
-  /// A copy to be read only (a snapshot's), without free lists: nodes are a tenth of a map's
-  /// bytes or less, and kept contiguous so that a query reads a node with one load.
-  [[nodiscard]] NodeStore share() const {
-    NodeStore copy;
-    copy.nodes_ = nodes_;
-    copy.blocks_ = blocks_;
-    copy.live_ = live_;
-    return copy;
+  /// A copy to be read only (a snapshot's), without free lists, made in `room` (a store let go
+  /// of, whose arrays are reused when large enough: no fresh pages to fault). Nodes are a tenth of
+  /// a map's bytes or less, and kept contiguous so that a query reads a node with one load.
+  [[nodiscard]] NodeStore share(NodeStore room) const {
+    room.nodes_.assign(nodes_.begin(), nodes_.end());
+    room.blocks_.assign(blocks_.begin(), blocks_.end());
+    room.free_nodes_.clear();
+    room.free_blocks_.clear();
+    room.live_ = live_;
+    return room;
   }
 
  private:
@@ -140,6 +145,32 @@ class NodeStore {
   MappedVector<ChildBlock> blocks_;
   MappedVector<std::uint32_t> free_blocks_;
   std::size_t live_ = 0;
+};
+
+/// The node store a snapshot let go of, kept for the next snapshot's copy (NodeStore::share) and
+/// counted in the ledger meanwhile. Snapshots go on any thread, hence the lock.
+class NodeShelf {
+ public:
+  explicit NodeShelf(std::shared_ptr<PageLedger> ledger) : ledger_(std::move(ledger)) {}
+  void put(NodeStore&& store) {
+    LedgerCharge charge(ledger_, store.bytes());
+    const std::lock_guard lock(mutex_);
+    kept_ = std::move(store);
+    charge_ = std::move(charge);
+  }
+  /// The store kept (empty if none); the shelf is left empty.
+  [[nodiscard]] NodeStore take() {
+    LedgerCharge gone;
+    const std::lock_guard lock(mutex_);
+    gone = std::move(charge_);
+    return std::exchange(kept_, NodeStore{});
+  }
+
+ private:
+  std::shared_ptr<PageLedger> ledger_;
+  std::mutex mutex_;
+  NodeStore kept_;
+  LedgerCharge charge_;
 };
 
 }  // namespace eco::detail

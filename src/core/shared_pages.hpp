@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 namespace eco::detail {
@@ -34,6 +35,7 @@ class PageLedger {
 
   std::atomic<std::size_t> bytes{0};
   std::atomic<std::size_t> live_bytes{0};
+  std::atomic<int> snapshots{0};  // alive
   [[nodiscard]] std::size_t snapshot_bytes() const {
     const std::size_t live = live_bytes.load(std::memory_order_relaxed);
     const std::size_t all = bytes.load(std::memory_order_relaxed);
@@ -114,12 +116,20 @@ class PageTable {
   MappedVector<PageHeader*> replaced_;  // held until release_replaced()
 };
 
-/// Bytes a snapshot holds of its own (its copy of the nodes), counted in a ledger while it lives.
+/// Bytes held for snapshots beside pages (a snapshot's copy of the nodes), counted in a ledger
+/// while they are.
 class LedgerCharge {
  public:
   LedgerCharge() = default;
   LedgerCharge(std::shared_ptr<PageLedger> ledger, std::size_t bytes) : ledger_(std::move(ledger)), bytes_(bytes) {
     ledger_->bytes.fetch_add(bytes_, std::memory_order_relaxed);
+  }
+  LedgerCharge(LedgerCharge&& other) noexcept
+      : ledger_(std::move(other.ledger_)), bytes_(std::exchange(other.bytes_, 0)) {}
+  LedgerCharge& operator=(LedgerCharge&& other) noexcept {
+    std::swap(ledger_, other.ledger_);
+    std::swap(bytes_, other.bytes_);
+    return *this;
   }
   LedgerCharge(const LedgerCharge&) = delete;
   LedgerCharge& operator=(const LedgerCharge&) = delete;

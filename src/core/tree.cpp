@@ -30,7 +30,7 @@ Tree::Tree(const Config& config)
 Tree::Tree(Tree& live, Sharing)
     : cfg_(live.cfg_),
       ledger_(live.ledger_),
-      nodes_(live.nodes_.share()),
+      nodes_(live.nodes_.share(live.shelf_->take())),
       points_(live.points_.share()),
       root_(live.root_),
       root_cell_(live.root_cell_),
@@ -40,7 +40,17 @@ Tree::Tree(Tree& live, Sharing)
       motion_(live.motion_),
       age_(live.age_),
       density_(cfg_.density_cap.max_points),
-      own_bytes_(ledger_, nodes_.bytes()) {}
+      shelf_(live.shelf_),
+      own_bytes_(ledger_, nodes_.bytes()),
+      snapshot_(true) {
+  ++ledger_->snapshots;
+}
+
+Tree::~Tree() {
+  if (!snapshot_) return;
+  --ledger_->snapshots;
+  shelf_->put(std::move(nodes_));
+}
 
 std::unique_ptr<const Tree> Tree::share() { return std::unique_ptr<const Tree>(new Tree(*this, Sharing{})); }
 
@@ -82,6 +92,7 @@ void Tree::give_back_memory(std::size_t floor) {
   compact_points(floor);
   // what this update copied, the next will likely copy again: that much is kept spare
   ledger_->trim_spare(points_.release_replaced());
+  if (ledger_->snapshots.load() == 0) (void)shelf_->take();  // no snapshot to copy nodes for soon
 }
 
 void Tree::compact_points(std::size_t floor) {

@@ -59,6 +59,10 @@ class Tree {
   /// `config`. Throws std::invalid_argument naming the first part that does not fit (a count past
   /// the points left, a point outside its leaf's cell, an empty node, a broken invariant).
   Tree(const Config& config, const TreeParts& parts);
+  Tree(const Tree&) = delete;
+  Tree& operator=(const Tree&) = delete;
+  /// A snapshot's puts its nodes on the shelf for the next snapshot's copy.
+  ~Tree();
   /// This tree as it is now, to be read only, from any thread, while this one goes on changing
   /// (a snapshot). It shares every page of points (core/shared_pages.hpp), a reference a page,
   /// and copies the nodes; this tree copies a page of points when it first writes it after the
@@ -328,7 +332,9 @@ class Tree {
   CellCounts density_;  // points per density-cap cell, kept while the cap is on
   WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
   WorkingBuffers buffers_;
+  std::shared_ptr<NodeShelf> shelf_ = std::make_shared<NodeShelf>(ledger_);  // shared with the snapshots
   LedgerCharge own_bytes_;  // a snapshot's: its copy of the nodes
+  bool snapshot_ = false;
 };
 
 }  // namespace eco::detail

@@ -302,7 +302,8 @@ TEST(Bench, SnapshotTimingRunsOnTheSameFramesAndIsReported) {
   const SnapshotTiming& t = *run.snapshots;
   EXPECT_EQ(t.frames, 5u);  // the first frame left out
   EXPECT_GT(t.reader_queries, 0u);
-  for (const double v : {t.update_alone_ms, t.update_read_ms, t.publish_ms, t.knn_live_ms, t.knn_snapshot_ms}) {
+  for (const double v :
+       {t.update_alone_ms, t.update_read_ms, t.update_beside_ms, t.publish_ms, t.knn_live_ms, t.knn_snapshot_ms}) {
     EXPECT_GT(v, 0.0);
   }
   EXPECT_GT(t.bytes_with_snapshot, t.bytes_alone) << "a snapshot a frame behind holds the pages changed since";
