@@ -54,9 +54,13 @@ Tree::~Tree() {
 
 std::unique_ptr<const Tree> Tree::share() { return std::unique_ptr<const Tree>(new Tree(*this, Sharing{})); }
 
-std::size_t Tree::bytes() const {
-  return sizeof(Tree) + nodes_.bytes() + points_.bytes() + start_.slots.capacity() * sizeof(std::uint32_t) +
-         buffer_bytes() + density_.bytes();
+TreeMemory Tree::memory() const {
+  TreeMemory m;
+  m.buffer_bytes = buffers_.bytes();
+  m.bytes = sizeof(Tree) + nodes_.bytes() + points_.bytes() + start_.slots.capacity() * sizeof(std::uint32_t) +
+            m.buffer_bytes + density_.bytes();
+  m.snapshot_bytes = ledger_->snapshot_bytes();
+  return m;
 }
 
 void Tree::set_motion(const Motion& m) {
@@ -102,10 +106,6 @@ void Tree::compact_points(std::size_t floor) {
     return owner < nodes_.id_bound() && nodes_[owner].leaf && nodes_[owner].link == link;
   };
   points_.compact(kCompactionBudget, holds, [&](std::uint32_t owner, std::uint32_t link) { nodes_.edit(owner).link = link; });
-}
-
-std::size_t Tree::buffer_bytes() const {
-  return buffers_.bytes();
 }
 
 // ---------------------------------------------------------------------------------------------

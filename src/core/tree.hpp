@@ -45,6 +45,14 @@ inline int min_leaf_depth(const Config& config) {
   return config.recentring == Recentring::Quantised ? int(config.quantum_levels) : 0;
 }
 
+/// A tree's memory (Tree::memory()).
+struct TreeMemory {
+  std::size_t bytes = 0;           ///< nodes, leaf blocks, start table, working buffers, density counts
+  std::size_t buffer_bytes = 0;    ///< of those, the working buffers' (core/working_buffers.hpp)
+  std::size_t snapshot_bytes = 0;  ///< beside them, what only snapshots hold: their nodes, spare
+                                   ///< pages, and the pages of points the tree replaced since
+};
+
 /// A filter's verdict on a subtree (Tree::filter): keep it whole, drop it whole, or look inside.
 enum class Verdict { KeepAll, DropAll, LookInside };
 
@@ -77,14 +85,8 @@ class Tree {
   [[nodiscard]] const Cell& root_cell() const { return root_cell_; }
   [[nodiscard]] const Lattice& lattice() const { return lattice_; }
   [[nodiscard]] std::size_t size() const { return root_ == kNone ? 0 : nodes_[root_].count; }
-  /// Bytes held: nodes, leaf blocks, start table, working buffers, density counts.
-  [[nodiscard]] std::size_t bytes() const;
-  /// Of those, the working buffers' (core/working_buffers.hpp), kept between updates so that no
-  /// frame pays for fresh pages.
-  [[nodiscard]] std::size_t buffer_bytes() const;
-  /// Bytes only snapshots hold: their nodes, and the pages of points this tree has replaced since
-  /// (share()).
-  [[nodiscard]] std::size_t snapshot_bytes() const { return ledger_->snapshot_bytes(); }
+  /// What it holds in memory, and what its snapshots do.
+  [[nodiscard]] TreeMemory memory() const;
   /// The current frame's motion (set_motion): pose, precision origin, box, frame number, clock.
   [[nodiscard]] const Motion& motion() const { return motion_; }
   /// The current frame's age limit.
@@ -94,10 +96,6 @@ class Tree {
   /// Enters a new frame (stage 1): its motion, the density grid seen from its anchor, its age
   /// limit, and the held times re-expressed in place when the clock's origin moved.
   void set_motion(const Motion& m);
-  /// Whether point `s` stays under `box` and the age limit (a pure test).
-  [[nodiscard]] bool stays(const StoredPoint& s, const Box& box) const {
-    return box.contains(s.p[0], s.p[1], s.p[2]) && age_.admits(s);
-  }
   /// Counts the density cells of `held` anew (after the precision origin moved, their keys did).
   void recount_density(const std::vector<StoredPoint>& held);
 

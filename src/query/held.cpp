@@ -27,8 +27,9 @@ Stats tree_stats(const Tree& t) {
   Stats s;
   s.points = t.size();
   s.nodes = t.nodes().live();
-  s.bytes = t.bytes();
-  s.snapshot_bytes = t.snapshot_bytes();
+  const TreeMemory memory = t.memory();
+  s.bytes = memory.bytes;
+  s.snapshot_bytes = memory.snapshot_bytes;
   if (t.root() == kNone) return s;
   double depth_sum = 0.0;
   auto walk = [&](auto&& self, std::uint32_t id) -> void {

@@ -37,7 +37,7 @@ void prune_shift_out(Tree& tree, const Motion& motion, UpdateStats& stats) {
 }
 
 bool leaves(const Tree& tree, const StoredPoint& s, const Box& box, UpdateStats& stats) {
-  if (tree.stays(s, box)) return false;
+  if (box.contains(s.p[0], s.p[1], s.p[2]) && tree.age_limit().admits(s)) return false;
   ++(box.contains(s.p[0], s.p[1], s.p[2]) ? stats.aged_out : stats.pruned);
   return true;
 }

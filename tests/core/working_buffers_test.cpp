@@ -64,10 +64,10 @@ TEST(WorkingBuffers, AreKeptBetweenUpdatesAtWhatTheUpdatesUse) {
     const std::vector<Eigen::Vector3f> scan = scan_of(8000, rng);
     const UpdateStats stats = run_update(tree, nullptr, pose_at(t), ScanView(scan));
     ASSERT_GT(stats.inserted, 1000u);
-    if (t == 2) kept = tree.buffer_bytes();
+    if (t == 2) kept = tree.memory().buffer_bytes;
     // neither given back nor grown again: every frame finds its buffers where the last left them
     if (t > 2) {
-      EXPECT_EQ(tree.buffer_bytes(), kept);
+      EXPECT_EQ(tree.memory().buffer_bytes, kept);
     }
   }
   EXPECT_GE(kept, 1000 * sizeof(BarePoint)) << "a frame's batch is kept";
@@ -77,16 +77,16 @@ TEST(WorkingBuffers, ShrinkWithinTwoWindowsOnceTheUpdatesNeedFarLess) {
   Tree tree(Config{});
   std::mt19937 rng(6);
   run_update(tree, nullptr, pose_at(0), ScanView(scan_of(200000, rng)));
-  const std::size_t burst = tree.buffer_bytes();
+  const std::size_t burst = tree.memory().buffer_bytes;
   EXPECT_GE(burst, Tree::kInsertChunk * sizeof(BarePoint)) << "a whole batch of points is held after the burst";
   const std::size_t window = WorkingBuffers::kWindow;
   for (std::size_t t = 1; t <= 2 * window; ++t) {
     run_update(tree, nullptr, pose_at(0), ScanView(scan_of(500, rng)));
     if (t < window) {
-      EXPECT_EQ(tree.buffer_bytes(), burst) << "frame " << t << ": kept through the first window";
+      EXPECT_EQ(tree.memory().buffer_bytes, burst) << "frame " << t << ": kept through the first window";
     }
   }
-  EXPECT_LT(tree.buffer_bytes(), burst / 8) << "given back after two windows of small frames";
+  EXPECT_LT(tree.memory().buffer_bytes, burst / 8) << "given back after two windows of small frames";
 }
 
 TEST(WorkingBuffers, SteadyUpdatesTakeNoPageFromTheHeap) {
