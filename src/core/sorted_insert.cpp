@@ -3,6 +3,7 @@
 // are sorted by the cells' Morton codes, and each of those levels reads its children's ranges off
 // the codes instead of moving every point into them (insert_range's counting sort per level).
 
+#include "core/batch_insertion.hpp"
 #include "core/cell_codes.hpp"
 #include "core/tree.hpp"
 
@@ -36,59 +37,59 @@ void sort_pass(const Point* points, const std::uint32_t* codes, std::uint32_t m,
 }  // namespace
 
 template <class Point>
-Tree::Added Tree::insert_sorted(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp,
+BatchInsertion::Added BatchInsertion::insert_sorted(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp,
                                 std::uint32_t* codes, std::uint32_t* codes_temp) {
   const auto m = std::uint32_t(to - from);
-  const int levels = std::min(kCodeLevels, lattice_.max_depth - cell.depth);
+  const int levels = std::min(kCodeLevels, t_.lattice_.max_depth - cell.depth);
   if (levels < 1) return insert_range(id, cell, from, to, temp);
   // the first level in the top bits, however many are coded
-  const CodeGrid grid = code_grid(lattice_, cell, levels, 3 * (kCodeLevels - levels));
-  find_cell_codes(lattice_, cell, grid, from, m, codes, reinterpret_cast<std::uint8_t*>(codes_temp));
+  const CodeGrid grid = code_grid(t_.lattice_, cell, levels, 3 * (kCodeLevels - levels));
+  find_cell_codes(t_.lattice_, cell, grid, from, m, codes, reinterpret_cast<std::uint8_t*>(codes_temp));
   sort_pass(from, codes, m, 0, temp, codes_temp);
   sort_pass(temp, codes_temp, m, kDigitBits, from, codes);
   return descend_sorted(id, cell, 0, from, to, temp, codes);
 }
 
 template <class Point>
-Tree::Added Tree::descend_sorted(std::uint32_t id, const Cell& cell, int level, Point* from, Point* to, Point* temp,
+BatchInsertion::Added BatchInsertion::descend_sorted(std::uint32_t id, const Cell& cell, int level, Point* from, Point* to, Point* temp,
                                  const std::uint32_t* codes) {
   const auto m = std::uint32_t(to - from);
-  if (level == kCodeLevels || cell.depth >= lattice_.max_depth ||
-      (nodes_[id].leaf && nodes_[id].count + m <= cfg_.leaf_capacity)) {
+  if (level == kCodeLevels || cell.depth >= t_.lattice_.max_depth ||
+      (t_.nodes_[id].leaf && t_.nodes_[id].count + m <= t_.cfg_.leaf_capacity)) {
     // a leaf with room, or below the coded levels; a leaf's subcells are read off the codes where
     // they name the two levels below it (its quarter walls are theirs: four lattice units or more)
     std::optional<std::uint64_t> subcells;
-    if (keeps_subcells_ && level + 2 <= kCodeLevels && lattice_.side(cell.depth) >= 4) {
+    if (t_.keeps_subcells_ && level + 2 <= kCodeLevels && t_.lattice_.side(cell.depth) >= 4) {
       subcells = subcells_of_codes(codes, m, 3 * (kCodeLevels - 2 - level));
     }
     return insert_range(id, cell, from, to, temp, subcells);
   }
   const int shift = 3 * (kCodeLevels - 1 - level);
-  if (nodes_[id].leaf) {  // it holds at most leaf_capacity: its children need no split
+  if (t_.nodes_[id].leaf) {  // it holds at most leaf_capacity: its children need no split
     std::array<std::uint32_t, 8> incoming{};
     for (std::uint32_t i = 0; i < m; ++i) ++incoming[(codes[i] >> shift) & 7u];
     split(id, cell, incoming);
   }
-  nodes_.prefetch_children(id);
+  t_.nodes_.prefetch_children(id);
   Added added;
   for (std::uint32_t begin = 0, end = 0; begin < m; begin = end) {  // an octant's points lie together, in order
     const std::uint32_t octant = (codes[begin] >> shift) & 7u;
     // the codes share the levels above and are sorted: the run ends at the first higher octant
     const std::uint32_t last_of_run = (codes[begin] >> shift << shift) | ((1u << shift) - 1);
     end = std::uint32_t(std::upper_bound(codes + begin, codes + m, last_of_run) - codes);
-    const std::uint32_t ch = child_or_new(id, cell, int(octant));
-    added.merge(descend_sorted(ch, lattice_.child(cell, int(octant)), level + 1, from + begin, from + end,
+    const std::uint32_t ch = t_.child_or_new(id, cell, int(octant));
+    added.merge(descend_sorted(ch, t_.lattice_.child(cell, int(octant)), level + 1, from + begin, from + end,
                                temp + begin, codes + begin));
   }
-  Node& n = nodes_.edit(id);
+  Node& n = t_.nodes_.edit(id);
   n.count += m;
   added.add_to(n);
   return added;
 }
 
-template Tree::Added Tree::insert_sorted(std::uint32_t, const Cell&, StoredPoint*, StoredPoint*, StoredPoint*,
+template BatchInsertion::Added BatchInsertion::insert_sorted(std::uint32_t, const Cell&, StoredPoint*, StoredPoint*, StoredPoint*,
                                          std::uint32_t*, std::uint32_t*);
-template Tree::Added Tree::insert_sorted(std::uint32_t, const Cell&, BarePoint*, BarePoint*, BarePoint*,
+template BatchInsertion::Added BatchInsertion::insert_sorted(std::uint32_t, const Cell&, BarePoint*, BarePoint*, BarePoint*,
                                          std::uint32_t*, std::uint32_t*);
 
 }  // namespace eco::detail

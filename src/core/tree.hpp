@@ -1,6 +1,7 @@
 #pragma once
 // The state behind an EgoOctree, and the structural operations the update stages share:
-// inserting a batch of points, splitting a leaf, dissolving and collapsing subtrees, refitting bounds.
+// inserting a batch of points (core/batch_insertion.hpp), dissolving and collapsing subtrees,
+// refitting bounds.
 
 #include "core/age_limit.hpp"
 #include "core/cell_counts.hpp"
@@ -55,6 +56,8 @@ struct TreeMemory {
 
 /// A filter's verdict on a subtree (Tree::filter): keep it whole, drop it whole, or look inside.
 enum class Verdict { KeepAll, DropAll, LookInside };
+
+class BatchInsertion;
 
 /// The storage behind an EgoOctree (nodes, leaf blocks, lattice, density counts) and the
 /// structural operations the update stages and the baselines compose. Everything it holds is
@@ -201,7 +204,6 @@ class Tree {
   static constexpr std::size_t kFreeShare = 8;
   static constexpr std::size_t kMemoryFloor = std::size_t{1} << 14;   // below, not worth it (four pages)
   static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
-  static constexpr std::uint32_t kSortedGroup = 64;  // points below one start node worth sorting (insert_sorted)
   /// give_back_memory's first part: the point pools' free blocks.
   void compact_points(std::size_t floor);
   /// Calls f(const StoredPoint&) for every point below `id`.
@@ -271,49 +273,12 @@ class Tree {
   void make_root();
   /// The child of inner node `id` (cell `cell`) at `octant`, created empty if missing.
   std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
-  /// Splits leaf `id` (cell `cell`); `incoming[o]` points are about to follow into octant o, and
-  /// a child that will hold them all without splitting gets a block with room for them.
-  void split(std::uint32_t id, const Cell& cell, const std::array<std::uint32_t, 8>& incoming = {});
-  struct Added {  // what an insertion put below a node
-    Aabb bounds;
-    std::uint32_t oldest = kNone;
-    void merge(const Added& more) {
-      bounds.merge(more.bounds);
-      oldest = std::min(oldest, more.oldest);
-    }
-    void add_to(Node& n) const {  // count aside: the caller knows how many
-      n.bounds.merge(bounds);
-      n.oldest = std::min(n.oldest, oldest);
-    }
-  };
-  /// Inserts points [from, to), all inside `cell`, into the subtree at `id`, partitioning them
-  /// into `temp` (room for as many; both ranges are overwritten); the caller adds them to the
-  /// ancestors. Returns their bounds and oldest age key. `subcells`, where the caller knows them,
-  /// are the points' subcells in `cell` (for a leaf that takes them all).
-  template <class Point>
-  Added insert_range(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp,
-                     std::optional<std::uint64_t> subcells = std::nullopt);
-  /// insert_range for many points (src/core/sorted_insert.cpp): sorted by the cells they fall in
-  /// a few levels down, found at once, so that those levels read their children's ranges instead
-  /// of partitioning them. `codes` and `codes_temp` have room for as many points.
-  template <class Point>
-  Added insert_sorted(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp, std::uint32_t* codes,
-                      std::uint32_t* codes_temp);
-  /// insert_sorted's descent: points [from, to) sorted by `codes`, `level` levels below the sort's node.
-  template <class Point>
-  Added descend_sorted(std::uint32_t id, const Cell& cell, int level, Point* from, Point* to, Point* temp,
-                       const std::uint32_t* codes);
-  /// The node at the start depth holding `cell`'s points (created on the way), or the leaf above.
-  std::uint32_t start_node(const Cell& cell, Cell& at);
-  /// Prefetches the start node of the first non-empty group at or after `from` (groups of
-  /// insert_batch, `first` their bounds), so its miss overlaps the work on the group before.
-  void prefetch_start_node(std::size_t from, std::span<const std::uint32_t> first) const;
   void note_created(std::uint32_t id, const Cell& cell);
   std::int64_t start_slot(const Cell& cell) const;
-  /// The start-depth cell whose slot is `slot` (start_slot's inverse).
-  [[nodiscard]] Cell start_cell(std::uint32_t slot) const;
+  /// insert_batch's and insert_collected's work (core/batch_insertion.hpp).
   template <class Point>
   void insert_points(std::span<Point> batch);
+  friend class BatchInsertion;
 
   Config cfg_;
   std::shared_ptr<PageLedger> ledger_;  // the pages this tree and its snapshots hold
