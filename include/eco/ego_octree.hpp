@@ -68,8 +68,9 @@ class EgoOctree final : public MapReader {
 
   /// The map as it is now, published for readers on other threads: an immutable handle that
   /// answers every query as this tree does now, names its frame and pose, and never changes
-  /// while this tree updates. It costs a reference per 4 KiB page of the map, not a copy: the
-  /// tree copies a page when it first writes it after the call (docs/design.md, "Snapshots").
+  /// while this tree updates. It costs a reference per page of points (4–16 KiB) and a copy of
+  /// the nodes (a tenth of the map's bytes or less), not a copy of the map: the tree copies a
+  /// page of points when it first writes it after the call (docs/design.md, "Snapshots").
   /// What only snapshots hold goes back to the system when their last handle goes
   /// (Stats::snapshot_bytes). Needs exclusive access, as update() does.
   [[nodiscard]] std::shared_ptr<const Snapshot> snapshot();

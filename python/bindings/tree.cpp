@@ -502,7 +502,7 @@ ids, intensities, times: as for update().)")
           },
           "An immutable Snapshot of the map as it is now, for readers on other threads: it answers "
           "every query as the tree does now, whatever the tree does after. It costs a reference per "
-          "4 KiB page of points and a copy of the nodes, not a copy of the map.")
+          "page of points (4-16 KiB) and a copy of the nodes, not a copy of the map.")
       .def("__repr__", [](const SharedTree& self) {
         const auto [points, frames] =
             reading(self, [](const MapReader& t) { return std::pair(t.size(), t.frame_count()); });
