@@ -7,6 +7,9 @@
 #include <eco/map_reader.hpp>
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <thread>
 
 namespace eco {
 
@@ -57,6 +60,35 @@ std::vector<Neighbor> MapReader::knn(const Eigen::Vector3d& query, std::size_t k
 std::size_t MapReader::knn(const Eigen::Vector3d& query, std::span<std::uint32_t> ids, std::span<double> sq_dists,
                           Frame frame) const {
   return detail::knn_ids_query(held(), query, ids, sq_dists, frame);
+}
+
+void MapReader::knn(std::span<const Eigen::Vector3d> queries, std::size_t k, std::span<Neighbor> out,
+                    std::span<std::size_t> found, unsigned threads, Frame frame) const {
+  const auto refuse = [](const std::string& what) { throw std::invalid_argument("eco::knn (batch): " + what); };
+  if (k == 0) refuse("k = 0 must be >= 1");
+  if (threads == 0) refuse("threads = 0 must be >= 1");
+  if (out.size() != queries.size() * k) {
+    refuse("out.size() = " + std::to_string(out.size()) + " must be queries.size() * k = " +
+           std::to_string(queries.size() * k));
+  }
+  if (found.size() != queries.size()) {
+    refuse("found.size() = " + std::to_string(found.size()) + " must be queries.size() = " +
+           std::to_string(queries.size()));
+  }
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    if (!queries[i].allFinite()) refuse("queries[" + std::to_string(i) + "] is not finite");
+  }
+  const auto slice = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) found[i] = knn(queries[i], out.subspan(i * k, k), frame);
+  };
+  const std::size_t slices = std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(queries.size(), 1));
+  const std::size_t step = (queries.size() + slices - 1) / slices;
+  std::vector<std::thread> helpers;
+  for (std::size_t s = 1; s < slices; ++s) {
+    helpers.emplace_back(slice, std::min(queries.size(), s * step), std::min(queries.size(), (s + 1) * step));
+  }
+  slice(0, std::min(queries.size(), step));
+  for (std::thread& h : helpers) h.join();
 }
 
 std::vector<Neighbor> MapReader::radius(const Eigen::Vector3d& query, double radius, Frame frame) const {

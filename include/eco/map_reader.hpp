@@ -34,6 +34,14 @@ class MapReader {
   /// Config::attributes.ids is on and the two spans have the same size.
   std::size_t knn(const Eigen::Vector3d& query, std::span<std::uint32_t> ids, std::span<double> sq_dists,
                   Frame frame = Frame::World) const;
+  /// A batch, as a registration loop asks it: the k nearest held points to each of `queries`,
+  /// query i's nearest first in out[i * k, i * k + found[i]) (found[i] = min(k, size())), the
+  /// answers the one-query call gives. `threads` share the batch in contiguous slices (the
+  /// calling thread takes the first); nothing is allocated per query. Throws
+  /// std::invalid_argument naming the value, before any query runs, unless k >= 1, threads >= 1,
+  /// out.size() == queries.size() * k, found.size() == queries.size() and every query is finite.
+  void knn(std::span<const Eigen::Vector3d> queries, std::size_t k, std::span<Neighbor> out,
+           std::span<std::size_t> found, unsigned threads = 1, Frame frame = Frame::World) const;
 
   /// Held points with ||p - query|| <= radius (a plain radius in metres, not squared),
   /// nearest first.

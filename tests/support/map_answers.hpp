@@ -85,6 +85,16 @@ inline void expect_identical(const MapReader& saved, const MapReader& loaded, st
   for (const double res : {0.1, 0.35}) EXPECT_EQ(saved.voxel_keys(res), loaded.voxel_keys(res)) << "voxels " << res;
 }
 
+/// Feeds `tree` frame `t` of a drive with attributes (add_attributes) whether it keeps them or not.
+inline const UpdateStats& update_with_attributes(EgoOctree& tree, const sim::SimFrame& frame, std::size_t t) {
+  ScanView scan(frame.cloud.points);
+  std::vector<std::uint32_t> ids;
+  std::vector<float> intensities;
+  std::vector<double> times;
+  add_attributes(scan, t, ids, intensities, times);
+  return tree.update(frame.world_T_lidar, scan);
+}
+
 /// Turns on in `cfg` all a map can keep beside its points: free-space clearing with `drive`'s
 /// sensor, a density cap, ids, intensities, times and an age limit in seconds.
 inline void with_everything(Config& cfg, const sim::Simulator& drive) {
