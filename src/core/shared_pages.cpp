@@ -87,11 +87,10 @@ std::size_t PageTable::release_replaced() {
 
 PageHeader* PageLedger::take_spare(std::size_t page_bytes) {
   const std::lock_guard lock(mutex_);
-  for (std::size_t i = spare_.size(); i-- > 0;) {
-    if (spare_[i]->bytes != page_bytes) continue;
-    PageHeader* page = spare_[i];
-    spare_[i] = spare_.back();
-    spare_.pop_back();
+  for (Spare& s : spare_) {
+    if (s.page_bytes != page_bytes || s.pages.empty()) continue;
+    PageHeader* page = s.pages.back();
+    s.pages.pop_back();
     spare_bytes_ -= page_bytes;
     return page;
   }
@@ -100,7 +99,9 @@ PageHeader* PageLedger::take_spare(std::size_t page_bytes) {
 
 void PageLedger::keep_spare(PageHeader* page) {
   const std::lock_guard lock(mutex_);
-  spare_.push_back(page);
+  auto s = std::find_if(spare_.begin(), spare_.end(), [&](const Spare& x) { return x.page_bytes == page->bytes; });
+  if (s == spare_.end()) s = spare_.insert(spare_.end(), Spare{page->bytes, {}});
+  s->pages.push_back(page);
   spare_bytes_ += page->bytes;
 }
 
@@ -108,10 +109,12 @@ void PageLedger::trim_spare(std::size_t keep) {
   std::vector<PageHeader*> gone;
   {
     const std::lock_guard lock(mutex_);
-    while (spare_bytes_ > keep && !spare_.empty()) {
-      gone.push_back(spare_.back());
-      spare_bytes_ -= spare_.back()->bytes;
-      spare_.pop_back();
+    for (Spare& s : spare_) {
+      while (spare_bytes_ > keep && !s.pages.empty()) {
+        gone.push_back(s.pages.back());
+        spare_bytes_ -= s.page_bytes;
+        s.pages.pop_back();
+      }
     }
   }
   for (PageHeader* page : gone) {

@@ -49,7 +49,11 @@ class PageLedger {
 
  private:
   std::mutex mutex_;  // pages are let go on any thread
-  std::vector<PageHeader*> spare_;
+  struct Spare {  // the spare pages of one size (a table's pages all have one; the pools' differ)
+    std::size_t page_bytes = 0;
+    MappedVector<PageHeader*> pages;
+  };
+  std::vector<Spare> spare_;  // a few sizes
   std::size_t spare_bytes_ = 0;
 };
 
