@@ -4,9 +4,10 @@
 // The tree's point blocks lie in fixed-size pages. Publishing a snapshot takes a reference to
 // every page (8 B a page, a 512th of a 4 KiB page's bytes) instead of copying them; the live tree
 // then copies a page the first time it writes to it while a snapshot still holds it, and writes
-// to its own copy. A snapshot's pages therefore never change, and what an
-// update copies grows with what it changed, not with what the map holds. A page goes back to the
-// system when its last holder lets it go, on whichever thread that is.
+// to its own copy. A snapshot's pages therefore never change, and what an update copies grows
+// with what it changed, not with what the map holds. A page its last holder lets go of, on
+// whichever thread, is kept spare for the next copies; each update gives back the spare pages
+// beyond what it copied itself.
 
 #include "core/mapped_memory.hpp"
 
