@@ -1,10 +1,11 @@
 #include "bench/caller_work.hpp"
 
+#include "bench/stopwatch.hpp"
+
 #include <Eigen/Core>
 
 #include <sys/resource.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -21,7 +22,7 @@ long minor_faults() {
 CallerWork run_caller_work(const ScanView& scan) {
   CallerWork work;
   const long faults = minor_faults();
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   {
     // as a registration loop's preprocessing does: the points copied in double precision into a
     // vector that grows as they come, then one kept per 1 m voxel through a hash map
@@ -40,7 +41,7 @@ CallerWork run_caller_work(const ScanView& scan) {
     for (const auto& [key, p] : voxels) kept.push_back(p);
     for (const Eigen::Vector3d& p : kept) work.sum += p.sum();
   }
-  work.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  work.ms = ms_since(start);
   work.faults = minor_faults() - faults;
   return work;
 }

@@ -1,10 +1,11 @@
 #include "bench/map_file_timing.hpp"
 
+#include "bench/stopwatch.hpp"
+
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -15,12 +16,6 @@
 
 namespace eco::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 /// The raw floor: one write of `bytes`, flushed to the disk, and one read back.
 void write_and_read_raw(const std::string& path, const std::string& bytes, std::string& back) {

@@ -3,6 +3,7 @@
 #include "bench/caller_work.hpp"
 #include "bench/chamfer.hpp"
 #include "bench/query_batch.hpp"
+#include "bench/stopwatch.hpp"
 #include "bench/workload_source.hpp"
 
 #include <eco/baselines/method.hpp>
@@ -15,15 +16,6 @@
 #include <stdexcept>
 
 namespace eco::bench {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-}  // namespace
 
 std::string chamfer_reference(WorkloadKind workload) {
   return workload == WorkloadKind::Dynamic ? "scan_only" : "octree_base";

@@ -1,6 +1,7 @@
 #include "bench/snapshot_timing.hpp"
 
 #include "bench/query_batch.hpp"
+#include "bench/stopwatch.hpp"
 #include "bench/workload_source.hpp"
 
 #include <eco/ego_octree.hpp>
@@ -8,7 +9,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -17,12 +17,6 @@
 
 namespace eco::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 /// A thread that queries the snapshot it is handed, without pause while told to read.
 class Reader {

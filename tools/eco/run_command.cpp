@@ -6,6 +6,7 @@
 #include "options_file.hpp"
 
 #include "bench/sim_workload.hpp"
+#include "bench/stopwatch.hpp"
 #include "bench/trails.hpp"
 
 #include <eco/eco.hpp>
@@ -13,7 +14,6 @@
 #include <eco/io/ply.hpp>
 #include <eco/workloads/dynamic_workload.hpp>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -81,9 +81,9 @@ class TrailReport {
     const std::size_t trail = on.trail;
     trail_on_ += trail;
     if (keeping_) {
-      const auto start = std::chrono::steady_clock::now();
+      const auto start = bench::Clock::now();
       keeping_->update(frame.world_T_sensor, scan);
-      keeping_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      keeping_ms_ += bench::ms_since(start);
       const std::vector<Eigen::Vector3d> kept = keeping_->points();
       const bench::TrailMeter::Census off = meter_.census(kept, t);
       trail_off_ += off.trail;
@@ -153,9 +153,9 @@ int run(const RunOptions& o, const std::string& command_line) {
     const workloads::WorkloadFrame frame = scans->frame(t);
     std::optional<workloads::AttributedScan> attributed;
     const ScanView scan = workloads::scan_for(frame, config.attributes, attributed);
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = bench::Clock::now();
     const UpdateStats u = tree.update(frame.world_T_sensor, scan);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double ms = bench::ms_since(start);
     update_ms += ms;
     if (!frame.labels.empty() && !trails) trails = std::make_unique<TrailReport>(config);
     const std::string trail = trails ? std::to_string(trails->frame(t, frame, scan, tree)) : "-";
