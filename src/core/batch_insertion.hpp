@@ -6,7 +6,9 @@
 
 #include "core/tree.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -64,5 +66,25 @@ class BatchInsertion {
 
   Tree& t_;
 };
+
+template <class Point, class Collect, class Look>
+std::size_t Tree::insert_collected(Collect&& collect, Look&& look) {
+  MappedVector<Point>& batch = buffers_.batch<Point>();
+  std::size_t n = 0;
+  const auto insert = [&] {
+    n += batch.size();
+    look(std::span<const Point>(batch));
+    insert_points(std::span<Point>(batch));
+    batch.clear();
+  };
+  batch.clear();
+  collect([&](const Point& s) {
+    batch.push_back(s);
+    if (batch.size() == kInsertChunk) insert();
+  });
+  insert();
+  buffers_.end_update(std::min(n, kInsertChunk));
+  return n;
+}
 
 }  // namespace eco::detail

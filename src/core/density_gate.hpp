@@ -62,6 +62,26 @@ inline std::size_t judge_group(CellCounts& counts, const WorldGrid& grid, const 
   return judge_group(counts, grid, cap.max_points, points, n, passed);
 }
 
+/// Calls produce(add); each add(p) hands the stored coordinates of a held point, counted in its
+/// cell in `grid` whatever the cell holds (a map recounted or loaded) — a group at a time.
+template <class Produce>
+void count_in_groups(CellCounts& counts, const WorldGrid& grid, Produce&& produce) {
+  std::array<std::array<float, 3>, kDensityGroup> points;
+  std::array<std::uint64_t, kDensityGroup> keys;
+  std::array<std::uint8_t, kDensityGroup> passed;
+  std::size_t held = 0;
+  const auto count = [&] {
+    find_cells(grid, points.data(), keys.data(), held);
+    counts.add_below_each(keys.data(), held, CellCounts::kMaxCount, passed.data());
+    held = 0;
+  };
+  produce([&](const std::array<float, 3>& p) {
+    points[held] = p;
+    if (++held == kDensityGroup) count();
+  });
+  count();
+}
+
 /// Calls produce(offer); each offer(p) hands the stored coordinates of a point that leaves, and
 /// its cell in `grid` forgets it — a group at a time, as judge_group asks.
 template <class Produce>

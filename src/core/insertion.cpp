@@ -6,6 +6,7 @@
 #include "core/cell_codes.hpp"
 #include "core/subcells.hpp"
 #include "core/tree.hpp"
+#include "core/tree_repair.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -192,7 +193,7 @@ void BatchInsertion::split(std::uint32_t id, const Cell& cell, const std::array<
     t_.points_.append_picked(n.link, child, 0, points, grouped + begin[std::size_t(o)], own,
                           all <= t_.cfg_.leaf_capacity ? all : 0);
     n.count = own;
-    t_.fit_leaf(child, t_.keeps_subcells_ ? Subcells(t_.lattice_, t_.lattice_.child(cell, o)) : Subcells());
+    TreeRepair(t_).fit_leaf(child, t_.keeps_subcells_ ? Subcells(t_.lattice_, t_.lattice_.child(cell, o)) : Subcells());
   }
   t_.points_.release(block);
   t_.nodes_.for_each_child(id, [&](int o, std::uint32_t ch) {

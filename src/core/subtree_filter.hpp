@@ -9,43 +9,68 @@
 // and left the leaf untouched). A subtree judged DropAll leaves the tree whole.
 
 #include "core/tree.hpp"
+#include "core/tree_repair.hpp"
 
 namespace eco::detail {
 
-template <class Filter>
-void Tree::filter(Filter& filter, UpdateStats& stats) {
-  if (root_ == kNone) return;
-  if (filter_below(root_, filter, stats) == Filtered::Gone) place_root(root_cell_, lattice_);  // everything left
-}
+/// A filter's verdict on a subtree: keep it whole, drop it whole, or look inside.
+enum class Verdict { KeepAll, DropAll, LookInside };
+
+namespace filtering {
+
+enum class Filtered { Unchanged, Changed, Gone };  // what filter_below did to a subtree
 
 template <class Filter>
-Tree::Filtered Tree::filter_below(std::uint32_t id, Filter& filter, UpdateStats& stats) {
-  const Node& n = nodes_[id];
+Filtered filter_below(const Tree& tree, TreeRepair& repair, std::uint32_t id, Filter& filter, UpdateStats& stats) {
+  const NodeStore& nodes = tree.nodes();
+  const Node& n = nodes[id];
   if (n.count == 0) return Filtered::Unchanged;
   const Verdict verdict = filter.judge(id, n);
   if (verdict == Verdict::KeepAll) return Filtered::Unchanged;
   if (verdict == Verdict::DropAll) {
-    drop(id, stats);
+    repair.drop(id, stats);
     return Filtered::Gone;
   }
   if (n.leaf) {
     if (!filter.filter_leaf(id)) return Filtered::Unchanged;
   } else {
     bool changed = false;
-    nodes_.for_each_child(id, [&](int o, std::uint32_t ch) {
-      const Filtered below = filter_below(ch, filter, stats);
-      if (below == Filtered::Gone) unlink_child(id, o);
+    nodes.for_each_child(id, [&](int o, std::uint32_t ch) {
+      const Filtered below = filter_below(tree, repair, ch, filter, stats);
+      if (below == Filtered::Gone) repair.unlink_child(id, o);
       changed = changed || below != Filtered::Unchanged;
     });
     if (!changed) return Filtered::Unchanged;
-    refit(id);
-    if (nodes_[id].count > 0) collapse_if_small(id);
+    repair.refit(id);
+    if (nodes[id].count > 0) repair.collapse_if_small(id);
   }
-  if (nodes_[id].count == 0 && id != root_) {
-    dissolve(id, nullptr);
+  if (nodes[id].count == 0 && id != tree.root()) {
+    repair.dissolve(id, nullptr);
     return Filtered::Gone;
   }
-  return nodes_[id].count == 0 ? Filtered::Gone : Filtered::Changed;
+  return nodes[id].count == 0 ? Filtered::Gone : Filtered::Changed;
+}
+
+}  // namespace filtering
+
+template <class Filter>
+void Tree::filter(Filter& filter, UpdateStats& stats) {
+  if (root_ == kNone) return;
+  TreeRepair repair(*this);
+  if (filtering::filter_below(*this, repair, root_, filter, stats) == filtering::Filtered::Gone) {
+    place_root(root_cell_, lattice_);  // everything left
+  }
+}
+
+template <class Keep>
+void Tree::retain(std::uint32_t id, Keep&& keep) {
+  Node& n = nodes_.edit(id);
+  n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) {
+    if (keep(s)) return true;
+    forget(s);
+    return false;
+  });
+  TreeRepair(*this).refit(id);
 }
 
 }  // namespace eco::detail

@@ -2,8 +2,10 @@
 
 #include "core/tree_parts.hpp"
 
+#include "core/density_gate.hpp"
 #include "core/invariants.hpp"
 #include "core/tree.hpp"
+#include "core/tree_repair.hpp"
 
 #include <cassert>
 #include <stdexcept>
@@ -119,7 +121,7 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
         if (entry.children >> o & 1) nodes_.edit_child(id, o) = self(self, id, o, lattice_.child(cell, o));
       }
     }
-    refit(id);
+    TreeRepair(*this).refit(id);
     if (parent != kNone && nodes_[id].count == 0) refuse("node " + std::to_string(index) + ": an empty node");
     if (!entry.leaf && parent != kNone && cell.depth >= min_leaf_depth_ && nodes_[id].count <= cfg_.leaf_capacity) {
       refuse("node " + std::to_string(index) + ": an inner node of " + std::to_string(nodes_[id].count) +
@@ -131,7 +133,8 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
   if (next_node != parts.nodes.size()) refuse(std::to_string(parts.nodes.size() - next_node) + " nodes past the tree");
   if (next_point != n) refuse(std::to_string(n - next_point) + " points past the tree's leaves");
   if (cfg_.density_cap.enabled()) {
-    count_density([&](auto&& add) { walk_points(root_, [&](const StoredPoint& s) { add(s.p); }); });
+    count_in_groups(density_, density_grid_,
+                    [&](auto&& add) { TreeRepair(*this).walk_points(root_, [&](const StoredPoint& s) { add(s.p); }); });
   }
   assert(check_tree(*this).empty());  // every invariant, by the refusals above
 }

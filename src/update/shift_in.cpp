@@ -1,4 +1,6 @@
 #include "clearing/clearing.hpp"
+#include "core/batch_insertion.hpp"
+#include "core/density_gate.hpp"
 #include "update/admission.hpp"
 #include "update/stages.hpp"
 
