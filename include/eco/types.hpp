@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace eco {
@@ -103,3 +104,12 @@ struct UpdateStats {
 };
 
 }  // namespace eco
+
+/// Voxel keys in unordered containers (a voxel map, a downsampling grid).
+template <>
+struct std::hash<eco::VoxelKey> {
+  std::size_t operator()(const eco::VoxelKey& k) const noexcept {
+    // the three large primes of Teschner et al. (2003), the spatial hash most voxel maps use
+    return std::size_t(k.x * 73856093) ^ std::size_t(k.y * 19349663) ^ std::size_t(k.z * 83492791);
+  }
+};

@@ -53,6 +53,11 @@ KittiSequence::KittiSequence(const fs::path& folder, const KittiOptions& options
   scan_count_ = count_scans(folder / "velodyne");
 
   const fs::path poses_path = resolve(folder, options.poses_file);
+  if (!options.require_poses && !fs::exists(poses_path)) {  // scans alone: frames read without poses
+    has_poses_ = false;
+    read_times(folder);
+    return;
+  }
   poses_ = read_kitti_poses(poses_path);
   if (poses_.size() < scan_count_) {
     throw Error(poses_path.string(), "", "has " + std::to_string(poses_.size()) + " poses for " +
@@ -67,7 +72,10 @@ KittiSequence::KittiSequence(const fs::path& folder, const KittiOptions& options
     velo_to_cam_ = read_kitti_calib(calib_path);
     for (auto& pose : poses_) pose = lidar_pose_from_camera(pose, *velo_to_cam_);
   }
+  read_times(folder);
+}
 
+void KittiSequence::read_times(const fs::path& folder) {
   const fs::path times_path = folder / "times.txt";
   if (fs::exists(times_path)) {
     times_ = read_kitti_times(times_path);
@@ -92,7 +100,7 @@ fs::path KittiSequence::scan_path(std::size_t index) const {
 
 KittiFrame KittiSequence::read(std::size_t index) const {
   check_index(index);
-  return {index, poses_[index], read_kitti_scan(scan_path(index))};
+  return {index, has_poses() ? poses_[index] : Eigen::Isometry3d::Identity(), read_kitti_scan(scan_path(index))};
 }
 
 bool KittiSequence::has_labels() const { return fs::is_directory(folder_ / "labels"); }

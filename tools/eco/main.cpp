@@ -1,5 +1,5 @@
 // eco — the command-line tool: simulate a drive, benchmark ECO against its baselines, or stream
-// a sequence through ECO.
+// a sequence through ECO, or run a LiDAR odometry on it.
 
 #include "commands.hpp"
 
@@ -21,14 +21,17 @@ int main(int argc, char** argv) {
       "                                                        all methods on the simulator's default drive\n"
       "  eco bench --data data/sim --methods eco,octree_base,nanoflann --out results/robot\n"
       "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out results/run00\n"
+      "  eco odometry --frames 200 --map all                  a LiDAR odometry on four maps, same frames\n"
       "Run 'eco <command> --help' for each command's options.");
   const eco::cli::Run simulate = eco::cli::add_simulate(app, command_line);
   const eco::cli::Run bench = eco::cli::add_bench(app, command_line);
   const eco::cli::Run run = eco::cli::add_run(app, command_line);
+  const eco::cli::Run odometry = eco::cli::add_odometry(app, command_line);
   CLI11_PARSE(app, argc, argv);
   try {
     if (app.got_subcommand("simulate")) return simulate();
     if (app.got_subcommand("bench")) return bench();
+    if (app.got_subcommand("odometry")) return odometry();
     return run();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "eco: %s\n", e.what());

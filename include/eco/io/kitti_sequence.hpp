@@ -33,6 +33,9 @@ enum class PoseFrame {
 struct KittiOptions {
   PoseFrame pose_frame = PoseFrame::Auto;
   std::string poses_file = "poses.txt";  ///< relative to the folder, or absolute
+  /// False: a folder whose poses file does not exist is read all the same, without poses
+  /// (has_poses() false, every frame's pose the identity); one that exists is still checked.
+  bool require_poses = true;
 };
 
 struct KittiFrame {
@@ -50,8 +53,9 @@ class KittiSequence {
 
   [[nodiscard]] std::size_t size() const { return scan_count_; }
   [[nodiscard]] const std::filesystem::path& folder() const { return folder_; }
-  /// world_T_lidar of every scan.
+  /// world_T_lidar of every scan (empty without poses).
   [[nodiscard]] std::span<const Eigen::Isometry3d> poses() const { return poses_; }
+  [[nodiscard]] bool has_poses() const { return has_poses_; }
   [[nodiscard]] bool poses_were_camera_frame() const { return velo_to_cam_.has_value(); }
   [[nodiscard]] const std::optional<Eigen::Isometry3d>& velo_to_cam() const { return velo_to_cam_; }
   /// Seconds from times.txt, or empty if there is none.
@@ -68,10 +72,12 @@ class KittiSequence {
 
  private:
   void check_index(std::size_t index) const;
+  void read_times(const std::filesystem::path& folder);
 
   std::filesystem::path folder_;
   std::size_t scan_count_ = 0;
   std::vector<Eigen::Isometry3d> poses_;
+  bool has_poses_ = true;
   std::optional<Eigen::Isometry3d> velo_to_cam_;
   std::vector<double> times_;
 };

@@ -1,0 +1,137 @@
+// eco odometry: a scan-to-map LiDAR odometry (eco/odometry/odometry.hpp) over a sequence, with
+// one map or all four on the same frames; poses, per-frame figures, accuracy against the
+// reference poses and a plot of the trajectories go to --out.
+
+#include "commands.hpp"
+#include "options_file.hpp"
+
+#include "bench/odometry_run.hpp"
+#include "bench/sim_workload.hpp"
+
+#include <eco/io/kitti_sequence.hpp>
+#include <eco/odometry/baseline_maps.hpp>
+#include <eco/workloads/dynamic_workload.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+namespace eco::cli {
+namespace {
+
+struct OdometryOptions {
+  std::string data;
+  std::string out = "results/odometry";
+  std::size_t frames = 0;
+  std::uint64_t seed = 1;
+  std::string map = "eco";
+  odometry::OdometryConfig config;
+};
+
+nlohmann::json options_json(const OdometryOptions& o) {
+  const odometry::OdometryConfig& c = o.config;
+  nlohmann::json out{{"frames", o.frames}, {"seed", o.seed}, {"map", o.map}, {"max-range", c.max_range},
+                     {"min-range", c.min_range}, {"voxel-size", c.voxel_size},
+                     {"max-points-per-voxel", c.max_points_per_voxel}, {"box-side", c.box_side},
+                     {"neighbours", c.neighbours}, {"max-iterations", c.max_iterations}, {"threads", c.threads}};
+  if (!o.data.empty()) out["data"] = std::filesystem::weakly_canonical(o.data).string();
+  return out;
+}
+
+std::string describe(const odometry::OdometryConfig& c) {
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "range %.1f-%.1f m; map: %u points per %.2f m voxel in a %.0f m cube, fed the scan downsampled to "
+                "%.2f m; registration: point-to-plane on %.2f m voxels, k = %zu, %u thread(s)",
+                c.min_range, c.max_range, c.max_points_per_voxel, c.voxel_size, c.box_side, 0.5 * c.voxel_size,
+                1.5 * c.voxel_size, c.neighbours, c.threads);
+  return text;
+}
+
+int run(OdometryOptions o, const std::string& command_line) {
+  std::unique_ptr<workloads::Workload> scans;
+  std::vector<Eigen::Isometry3d> reference;
+  bench::PoseOutput pose_output;
+  std::string source;
+  if (o.data.empty()) {
+    sim::SimConfig sim;
+    sim.seed = o.seed;
+    sim.frames = o.frames > 0 ? o.frames : 300;
+    scans = std::make_unique<bench::SimWorkload>(sim);
+    for (std::size_t t = 0; t < sim.frames; ++t) reference.push_back(scans->pose(t));
+    source = "the simulated drive (seed " + std::to_string(o.seed) + ")";
+  } else {
+    io::KittiOptions read;
+    read.require_poses = false;  // a folder of scans alone runs, without accuracy figures
+    io::KittiSequence sequence(o.data, read);
+    if (sequence.has_poses()) reference.assign(sequence.poses().begin(), sequence.poses().end());
+    pose_output.velo_to_cam = sequence.velo_to_cam();
+    scans = std::make_unique<workloads::DynamicWorkload>(std::move(sequence));
+    source = std::filesystem::path(o.data).filename().string();
+    if (source.empty()) source = o.data;
+  }
+  const std::size_t frames = o.frames > 0 ? std::min(o.frames, scans->size()) : scans->size();
+  reference.resize(std::min(reference.size(), frames));
+  const std::vector<std::string> maps =
+      o.map == "all" ? odometry::all_local_map_names() : std::vector<std::string>{o.map};
+  for (const std::string& m : maps) (void)odometry::make_any_local_map(m, o.config.map_settings());  // names checked first
+
+  write_options_file(o.out, "odometry", command_line, options_json(o), nullptr);
+  std::printf("odometry on %s, %zu frames, map%s %s\n%s\n", source.c_str(), frames, maps.size() > 1 ? "s" : "",
+              o.map.c_str(), describe(o.config).c_str());
+  if (reference.empty()) std::printf("no poses.txt: the run gives no accuracy figures\n");
+  const std::size_t step = std::max<std::size_t>(1, frames / 10);
+  const auto progress = [&](const std::string& map, std::size_t t) {
+    if (t % step == step - 1 || t + 1 == frames) {
+      std::fprintf(stderr, "\r%-10s frame %zu / %zu", map.c_str(), t + 1, frames);
+      if (t + 1 == frames) std::fprintf(stderr, "\n");
+    }
+  };
+  const std::vector<bench::OdometryRun> runs =
+      bench::run_odometry(*scans, frames, maps, o.config, reference, progress);
+  std::printf("\n%s\nresults: %s\n",
+              bench::write_odometry_results(o.out, source, runs, reference, pose_output).c_str(), o.out.c_str());
+  return 0;
+}
+
+}  // namespace
+
+Run add_odometry(CLI::App& app, const std::string& command_line) {
+  auto o = std::make_shared<OdometryOptions>();
+  odometry::OdometryConfig& c = o->config;
+  CLI::App* cmd = app.add_subcommand("odometry", "A LiDAR odometry on ECO's map (or another), against reference poses");
+  cmd->add_option("--data", o->data, "KITTI-layout folder; default: a simulated drive")->check(CLI::ExistingDirectory);
+  cmd->add_option("--frames", o->frames, "frames to run (0 = all; 300 for the simulator)")->capture_default_str();
+  cmd->add_option("--out", o->out, "folder for the results")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "the simulator's seed without --data")->capture_default_str();
+  std::vector<std::string> names = odometry::all_local_map_names();
+  names.push_back("all");
+  cmd->add_option("--map", o->map, "the map registered against, or all four on the same frames")
+      ->check(CLI::IsMember(names))
+      ->capture_default_str();
+  cmd->add_option("--max-range", c.max_range, "[m] farther returns are dropped")->capture_default_str();
+  cmd->add_option("--min-range", c.min_range, "[m] nearer returns are dropped")->capture_default_str();
+  cmd->add_option("--voxel-size", c.voxel_size, "[m] the map's voxel; the scan goes in at half, is registered at 1.5x")
+      ->capture_default_str();
+  cmd->add_option("--max-points-per-voxel", c.max_points_per_voxel, "the map's density cap")->capture_default_str();
+  cmd->add_option("--box-side", c.box_side, "[m] side of the cube the map holds around the sensor")
+      ->capture_default_str();
+  cmd->add_option("--neighbours", c.neighbours, "k: map points each plane is fitted to")->capture_default_str();
+  cmd->add_option("--max-iterations", c.max_iterations, "ICP iterations at most")->capture_default_str();
+  cmd->add_option("--threads", c.threads, "threads ECO's batch KNN spreads the queries over")->capture_default_str();
+  auto file = std::make_shared<OptionsFile>(*cmd, "odometry");
+  cmd->footer(
+      "Writes <out>/<map>/poses.txt (KITTI format: camera-0 poses when the folder has calib.txt) and\n"
+      "frames.csv, then summary.md, summary.json, trajectory.svg and config.json. Without poses.txt the\n"
+      "run goes on, without accuracy figures. Defaults are KISS-ICP's for a 100 m LiDAR (voxel = range / 100).\n"
+      "Examples:\n"
+      "  eco odometry --frames 200 --map all                 four maps on the simulator's drive\n"
+      "  eco odometry --data ../shared/data/kitti_mini_00 --map all --out results/odometry00\n"
+      "  eco odometry --data ../shared/data/balm2_realworld_f20-99 --max-range 40 --voxel-size 0.4");
+  return [o, file, command_line] {
+    file->load();
+    return run(*o, command_line);
+  };
+}
+
+}  // namespace eco::cli
