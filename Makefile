@@ -51,7 +51,7 @@ test-sanitize: deps
 
 test-threads: deps
 	cmake -S . -B $(TSAN_BUILD) $(SANITIZED_DEBUG) -DECO_THREAD_SANITIZE=ON -DECO_BUILD_TOOLS=OFF -DECO_BUILD_EXAMPLES=OFF
-	cmake --build $(TSAN_BUILD) -j $(JOBS) --target snapshot_threads_test
+	cmake --build $(TSAN_BUILD) -j $(JOBS) --target snapshot_threads_test batch_knn_test
 	ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS)
 
 test-fuzz: deps

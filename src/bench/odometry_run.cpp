@@ -6,10 +6,15 @@
 #include <eco/io/kitti.hpp>
 #include <eco/odometry/baseline_maps.hpp>
 
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 namespace eco::bench {
 namespace {
@@ -44,6 +49,70 @@ std::string frames_csv(const OdometryRun& run) {
 const OdometryRun* find_run(const std::vector<OdometryRun>& runs, const std::string& map) {
   const auto it = std::ranges::find(runs, map, &OdometryRun::map);
   return it == runs.end() ? nullptr : &*it;
+}
+
+/// Room for a run's frame reports in memory shared with a child process, and for its error.
+class FrameSlots {
+ public:
+  explicit FrameSlots(std::size_t frames) : frames_(frames), bytes_(sizeof(Header) + frames * sizeof(odometry::FrameReport)) {
+    memory_ = mmap(nullptr, bytes_, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (memory_ == MAP_FAILED) throw std::runtime_error("odometry: no shared memory for " + std::to_string(frames) + " frames");
+    new (memory_) Header();
+  }
+  FrameSlots(const FrameSlots&) = delete;
+  FrameSlots& operator=(const FrameSlots&) = delete;
+  ~FrameSlots() { munmap(memory_, bytes_); }
+
+  void put(const odometry::FrameReport& report) {
+    if (header().count == frames_) return;
+    new (reports() + header().count++) odometry::FrameReport(report);
+  }
+  void fail(const char* message) { std::snprintf(header().error, sizeof header().error, "%s", message); }
+  [[nodiscard]] std::vector<odometry::FrameReport> reports_copied() const {
+    return {reports(), reports() + header().count};
+  }
+  [[nodiscard]] const char* error() const { return header().error; }
+
+ private:
+  struct alignas(64) Header {  // the reports after it aligned as Eigen's matrices want
+    std::size_t count = 0;
+    char error[512] = {};
+  };
+  [[nodiscard]] Header& header() const { return *static_cast<Header*>(memory_); }
+  [[nodiscard]] odometry::FrameReport* reports() const {
+    return reinterpret_cast<odometry::FrameReport*>(static_cast<std::byte*>(memory_) + sizeof(Header));
+  }
+  std::size_t frames_;
+  std::size_t bytes_;
+  void* memory_;
+};
+
+/// What `work` puts in its slots (room for `frames`), done in a child process: each map's run
+/// starts from the same heap and leaves none of its own to the next, so that the page faults of
+/// the odometry's own work are the map's doing alone. Throws std::runtime_error with the child's
+/// message when it failed.
+std::vector<odometry::FrameReport> in_child_process(std::size_t frames, const std::function<void(FrameSlots&)>& work) {
+  FrameSlots slots(frames);
+  std::fflush(nullptr);
+  const pid_t child = fork();
+  if (child < 0) throw std::runtime_error("odometry: fork failed");
+  if (child == 0) {
+    int status = 0;
+    try {
+      work(slots);
+    } catch (const std::exception& e) {
+      slots.fail(e.what());
+      status = 1;
+    }
+    std::fflush(nullptr);
+    _exit(status);  // no destructors, no atexit handlers: the parent's to run
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw std::runtime_error(*slots.error() ? slots.error() : "odometry: the run's process ended abnormally");
+  }
+  return slots.reports_copied();
 }
 
 }  // namespace
@@ -81,17 +150,19 @@ std::vector<OdometryRun> run_odometry(const workloads::Workload& scans, std::siz
   frames = std::min(frames, scans.size());
   std::vector<OdometryRun> runs;
   for (const std::string& map : maps) {
-    odometry::Odometry odo(config, odometry::make_any_local_map(map, config.map_settings()));
-    if (!reference.empty()) odo.set_start(reference.front());
     OdometryRun run;
     run.map = map;
-    run.exact = odo.map().exact();
-    for (std::size_t t = 0; t < frames; ++t) {
-      const workloads::WorkloadFrame frame = scans.frame(t);
-      run.frames.push_back(odo.register_frame(ScanView(frame.points)));
-      if (progress) progress(map, t);
-    }
-    run.poses = odo.poses();
+    run.exact = odometry::make_any_local_map(map, config.map_settings())->exact();
+    run.frames = in_child_process(frames, [&](FrameSlots& slots) {
+      odometry::Odometry odo(config, odometry::make_any_local_map(map, config.map_settings()));
+      if (!reference.empty()) odo.set_start(reference.front());
+      for (std::size_t t = 0; t < frames; ++t) {
+        const workloads::WorkloadFrame frame = scans.frame(t);
+        slots.put(odo.register_frame(ScanView(frame.points)));
+        if (progress) progress(map, t);
+      }
+    });
+    for (const odometry::FrameReport& f : run.frames) run.poses.push_back(f.pose);
     if (!reference.empty() && frames >= 2) {
       run.errors = odometry::trajectory_errors(run.poses, reference.first(frames));
     }

@@ -39,8 +39,9 @@ struct OdometryFigures {
 [[nodiscard]] OdometryFigures figures_of(const OdometryRun& run);
 
 /// Runs the odometry under `config` with each of `maps` on frames [0, frames) of `scans`, one map
-/// after the other. With `reference` (one pose per frame) each run starts at its first pose and is
-/// scored against it. `progress(map, frame)` is told of each frame.
+/// after the other, each in a process of its own (forked: one map's heap does not shape the
+/// next's page faults). With `reference` (one pose per frame) each run starts at its first pose
+/// and is scored against it. `progress(map, frame)` is told of each frame (in the child).
 [[nodiscard]] std::vector<OdometryRun> run_odometry(
     const workloads::Workload& scans, std::size_t frames, const std::vector<std::string>& maps,
     const odometry::OdometryConfig& config, std::span<const Eigen::Isometry3d> reference,

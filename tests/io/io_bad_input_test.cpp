@@ -105,6 +105,16 @@ TEST(KittiBadInput, Folders) {
   make_sequence(dir / "no_poses");
   fs::remove(dir / "no_poses" / "poses.txt");
   expect_error([&] { KittiSequence s(dir / "no_poses"); }, {"poses.txt", "cannot open"});
+  KittiOptions scans_alone;  // poses not required: read without them, frames at the identity
+  scans_alone.require_poses = false;
+  const KittiSequence without(dir / "no_poses", scans_alone);
+  EXPECT_FALSE(without.has_poses());
+  EXPECT_TRUE(without.poses().empty());
+  EXPECT_EQ(without.size(), 2u);
+  EXPECT_TRUE(without.read(1).world_T_lidar.isApprox(Eigen::Isometry3d::Identity()));
+  make_sequence(dir / "few_poses_not_required");  // a poses file that exists is still checked
+  write_text(dir / "few_poses_not_required" / "poses.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n");
+  expect_error([&] { KittiSequence s(dir / "few_poses_not_required", scans_alone); }, {"1 poses for 2 scans"});
 
   make_sequence(dir / "few_times");
   write_text(dir / "few_times" / "times.txt", "0\n");

@@ -49,6 +49,7 @@ std::string describe(const odometry::OdometryConfig& c) {
 }
 
 int run(OdometryOptions o, const std::string& command_line) {
+  o.config.validate();
   std::unique_ptr<workloads::Workload> scans;
   std::vector<Eigen::Isometry3d> reference;
   bench::PoseOutput pose_output;

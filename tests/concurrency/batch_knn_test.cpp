@@ -1,5 +1,6 @@
 // The batch KNN (MapReader::knn over a span of queries): the answers of the one-query call, for
 // any thread count, on a tree and on its snapshot; bad arguments refused by name before any query.
+// Built under ThreadSanitizer too (make test-threads).
 
 #include "support/map_answers.hpp"
 
