@@ -7,6 +7,7 @@
 #include <eco/map_reader.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -78,16 +79,19 @@ void MapReader::knn(std::span<const Eigen::Vector3d> queries, std::size_t k, std
   for (std::size_t i = 0; i < queries.size(); ++i) {
     if (!queries[i].allFinite()) refuse("queries[" + std::to_string(i) + "] is not finite");
   }
-  const auto slice = [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) found[i] = knn(queries[i], out.subspan(i * k, k), frame);
+  // chunks handed out as threads ask, so that a slower part of the batch does not hold one back
+  constexpr std::size_t kChunk = 64;
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t begin = next.fetch_add(kChunk); begin < queries.size(); begin = next.fetch_add(kChunk)) {
+      const std::size_t end = std::min(queries.size(), begin + kChunk);
+      for (std::size_t i = begin; i < end; ++i) found[i] = knn(queries[i], out.subspan(i * k, k), frame);
+    }
   };
-  const std::size_t slices = std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(queries.size(), 1));
-  const std::size_t step = (queries.size() + slices - 1) / slices;
+  const std::size_t helpers_wanted = std::min<std::size_t>(threads, (queries.size() + kChunk - 1) / kChunk);
   std::vector<std::thread> helpers;
-  for (std::size_t s = 1; s < slices; ++s) {
-    helpers.emplace_back(slice, std::min(queries.size(), s * step), std::min(queries.size(), (s + 1) * step));
-  }
-  slice(0, std::min(queries.size(), step));
+  for (std::size_t h = 1; h < helpers_wanted; ++h) helpers.emplace_back(work);
+  work();
   for (std::thread& h : helpers) h.join();
 }
 

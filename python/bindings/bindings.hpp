@@ -12,5 +12,6 @@ void bind_results(py::module_& m);  // Stats, UpdateStats
 void bind_tree(py::module_& m);     // EgoOctree
 void bind_io(py::module_& io);      // eco.io: KITTI sequences, scans, poses, PLY, PCD
 void bind_sim(py::module_& sim);    // eco.sim: SimConfig and its models, Simulator
+void bind_odometry(py::module_& o); // eco.odometry: Odometry, OdometryConfig, FrameReport, errors
 
 }  // namespace eco::python

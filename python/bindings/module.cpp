@@ -15,4 +15,6 @@ PYBIND11_MODULE(_eco, m) {
   bind_io(io);
   py::module_ sim = m.def_submodule("sim", "The LiDAR simulator.");
   bind_sim(sim);
+  py::module_ odometry = m.def_submodule("odometry", "A LiDAR odometry on ECO's map.");
+  bind_odometry(odometry);
 }

@@ -12,13 +12,14 @@ neighbours, radius, box, voxel map) are exact over the held points.
         nearest, sq_dists = tree.knn(np.zeros((1, 3)) + pose[:3, 3], k=5)
 
 Modules: eco (EgoOctree, Config and its enums, Stats, UpdateStats), eco.io (KittiSequence, PLY,
-PCD, KITTI files), eco.sim (Simulator, SimConfig). Every class and function has a docstring.
+PCD, KITTI files), eco.sim (Simulator, SimConfig), eco.odometry (a LiDAR odometry on ECO's map:
+Odometry, trajectory_errors). Every class and function has a docstring.
 """
 
 from . import _eco
 from ._reexport import reexport
 
-__all__ = reexport(_eco, globals(), __name__) + ["io", "sim"]
+__all__ = reexport(_eco, globals(), __name__) + ["io", "sim", "odometry"]
 __version__ = _eco.__version__
 
-from . import io, sim  # noqa: E402  (after the core names, which they use)
+from . import io, odometry, sim  # noqa: E402  (after the core names, which they use)

@@ -83,6 +83,7 @@ void OdometryConfig::validate() const {
   require(positive(voxel_size), "voxel_size must be finite and > 0 m, got " + std::to_string(voxel_size));
   require(neighbours >= 3, "neighbours must be >= 3 (a plane), got " + std::to_string(neighbours));
   require(positive(plane_tolerance), "plane_tolerance must be finite and > 0 m, got " + std::to_string(plane_tolerance));
+  require(positive(plane_reach), "plane_reach must be finite and > 0 voxels, got " + std::to_string(plane_reach));
   require(positive(initial_threshold), "initial_threshold must be finite and > 0 m, got " + std::to_string(initial_threshold));
   require(std::isfinite(min_motion) && min_motion >= 0.0, "min_motion must be >= 0 m, got " + std::to_string(min_motion));
   require(max_iterations >= 1, "max_iterations must be >= 1, got " + std::to_string(max_iterations));
@@ -163,6 +164,7 @@ FrameReport Odometry::register_frame(ScanView scan) {
     settings.max_distance = report.threshold;
     settings.kernel_scale = o.threshold.sigma() / 3.0;
     settings.plane_tolerance = c.plane_tolerance;
+    settings.plane_reach = c.plane_reach * c.voxel_size;
     settings.max_iterations = c.max_iterations;
     settings.convergence = c.convergence;
     settings.fit_distance = 0.1 * c.voxel_size;

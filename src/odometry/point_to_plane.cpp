@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace eco::odometry {
@@ -15,14 +16,16 @@ struct Plane {
   Eigen::Vector3d centroid;
 };
 
-/// The plane through `points` (least squares), when every point lies within `tolerance` of it.
-bool fit_plane(std::span<const Neighbor> points, double tolerance, Plane& plane) {
+/// The plane through `points` (least squares), when every point lies within `tolerance` of it
+/// and within `reach` of their centroid.
+bool fit_plane(std::span<const Neighbor> points, double tolerance, double reach, Plane& plane) {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const Neighbor& n : points) centroid += n.point;
   centroid /= double(points.size());
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   for (const Neighbor& n : points) {
     const Eigen::Vector3d d = n.point - centroid;
+    if (d.squaredNorm() > reach * reach) return false;
     scatter += d * d.transpose();
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
@@ -49,6 +52,12 @@ Eigen::Isometry3d moved_by(const Eigen::Isometry3d& pose, const Eigen::Matrix<do
   return moved;
 }
 
+/// How far apart two poses are, as a step is measured: translation [m] plus rotation [rad].
+double apart(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  const Eigen::Isometry3d d = a.inverse() * b;
+  return d.translation().norm() + Eigen::AngleAxisd(d.linear()).angle();
+}
+
 }  // namespace
 
 Alignment PointToPlane::align(const LocalMap& map, std::span<const Eigen::Vector3d> source,
@@ -60,6 +69,7 @@ Alignment PointToPlane::align(const LocalMap& map, std::span<const Eigen::Vector
   neighbours_.resize(source.size() * k);
   found_.resize(source.size());
   const double max_sq = settings.max_distance * settings.max_distance;
+  std::array<Eigen::Isometry3d, 8> recent;  // the poses after the last eight steps
   for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
     result.iterations = iteration + 1;
     Stopwatch query;
@@ -76,7 +86,10 @@ Alignment PointToPlane::align(const LocalMap& map, std::span<const Eigen::Vector
     for (std::size_t i = 0; i < source.size(); ++i) {
       const std::span<const Neighbor> near(neighbours_.data() + i * k, found_[i]);
       Plane plane;
-      if (found_[i] < k || near.front().sq_dist > max_sq || !fit_plane(near, settings.plane_tolerance, plane)) continue;
+      if (found_[i] < k || near.front().sq_dist > max_sq ||
+          !fit_plane(near, settings.plane_tolerance, settings.plane_reach, plane)) {
+        continue;
+      }
       const double residual = plane.normal.dot(moved_[i] - plane.centroid);
       const double ratio = residual * residual / scale_sq;
       const double weight = 1.0 / ((1.0 + ratio) * (1.0 + ratio));  // Geman–McClure
@@ -98,6 +111,14 @@ Alignment PointToPlane::align(const LocalMap& map, std::span<const Eigen::Vector
     result.pose = moved_by(result.pose, step);
     result.solve_ms += solve.ms();
     if (step.norm() < settings.convergence) break;
+    // a cycle: a few neighbours swapping back and forth as the pose moves a fraction of a
+    // millimetre lead back to where the pose stood a few steps ago
+    const std::size_t seen = std::min<std::size_t>(std::size_t(iteration), recent.size());
+    const bool cycled = std::any_of(recent.begin(), recent.begin() + std::ptrdiff_t(seen), [&](const Eigen::Isometry3d& p) {
+      return apart(result.pose, p) < settings.convergence;
+    });
+    if (cycled) break;
+    recent[std::size_t(iteration) % recent.size()] = result.pose;
   }
   return result;
 }
