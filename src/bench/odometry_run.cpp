@@ -117,6 +117,30 @@ std::vector<odometry::FrameReport> in_child_process(std::size_t frames, const st
 
 }  // namespace
 
+std::string brief_odometry_table(const std::vector<OdometryRun>& runs) {
+  const OdometryRun* eco = find_run(runs, "eco");
+  const double eco_ms = eco ? figures_of(*eco).frame_ms : 0.0;
+  const bool segments = !runs.empty() && runs.front().errors && !runs.front().errors->by_length.empty();
+  std::ostringstream s;
+  s << "ms per frame (mean after the first); × ECO's: the frame over ECO's; map: its queries and update;\n"
+    << (segments ? "drift: KITTI's mean relative translation error over 100-800 m; " : "")
+    << "ATE after a rigid alignment\n\n"
+    << "| map        | frame |  × ECO's | map share | update share | " << (segments ? "drift % | " : "") << "ATE m  |\n"
+    << "|------------|------:|---------:|----------:|-------------:|" << (segments ? "--------:|" : "") << "-------:|\n";
+  for (const OdometryRun& run : runs) {
+    const OdometryFigures f = figures_of(run);
+    char row[200];
+    std::snprintf(row, sizeof row, "| %-10s | %5.2f | %8s | %8.0f %% | %10.1f %% | ", run.map.c_str(), f.frame_ms,
+                  eco_ms > 0 ? format("%.2f×", f.frame_ms / eco_ms).c_str() : "–",
+                  f.frame_ms > 0 ? 100 * (f.query_ms + f.update_ms) / f.frame_ms : 0.0,
+                  f.frame_ms > 0 ? 100 * f.update_ms / f.frame_ms : 0.0);
+    s << row;
+    if (segments) s << format("%7.3f", run.errors->translation_pct) << " | ";
+    s << (run.errors ? format("%6.3f", run.errors->ate_rmse) : std::string("     –")) << " |\n";
+  }
+  return s.str();
+}
+
 OdometryFigures figures_of(const OdometryRun& run) {
   OdometryFigures f;
   std::vector<double> totals;
@@ -239,7 +263,7 @@ std::string write_odometry_results(const std::filesystem::path& out, const std::
   write_text(out / "summary.md", md.str());
   write_text(out / "summary.json", json.dump(2) + "\n");
   write_trajectory_plot(out / "trajectory.svg", source, runs, reference);
-  return md.str();
+  return brief_odometry_table(runs);
 }
 
 }  // namespace eco::bench

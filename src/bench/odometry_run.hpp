@@ -37,6 +37,9 @@ struct OdometryFigures {
   std::size_t map_points = 0;  // after the last frame
 };
 [[nodiscard]] OdometryFigures figures_of(const OdometryRun& run);
+/// The runs in a table that fits a terminal: time per frame, over ECO's, the map's share, the
+/// accuracy (summary.md has every figure).
+[[nodiscard]] std::string brief_odometry_table(const std::vector<OdometryRun>& runs);
 
 /// Runs the odometry under `config` with each of `maps` on frames [0, frames) of `scans`, one map
 /// after the other, each in a process of its own (forked: one map's heap does not shape the
@@ -53,7 +56,7 @@ struct PoseOutput {
 };
 
 /// Writes <out>/<map>/poses.txt and frames.csv for each run, then summary.md, summary.json and
-/// trajectory.svg; returns the summary's text. `source` names the frames in the summary.
+/// trajectory.svg; returns brief_odometry_table(runs). `source` names the frames in the summary.
 std::string write_odometry_results(const std::filesystem::path& out, const std::string& source,
                                    const std::vector<OdometryRun>& runs, std::span<const Eigen::Isometry3d> reference,
                                    const PoseOutput& poses);

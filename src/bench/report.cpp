@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <iomanip>
@@ -184,12 +185,14 @@ std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>
   }
   const MethodSummary* pcl = find(summaries, "pcl_octree");
   const MethodSummary* kd = find(summaries, "nanoflann");
-  s << "\nThe robot's figures (DESIGN.md §5): eco update / scan_pass "
-    << ratio(eco, &MethodSummary::update_ms, pass) << ", pcl_octree update / eco "
-    << ratio(pcl, &MethodSummary::update_ms, eco) << ", nanoflann update / eco "
-    << ratio(kd, &MethodSummary::update_ms, eco) << ", eco voxel map / pcl_octree "
-    << ratio(eco, &MethodSummary::voxel_ms, pcl) << ", eco KNN / nanoflann " << ratio(eco, &MethodSummary::knn_ms, kd)
-    << ", eco update p99 / mean " << (eco ? fixed(eco->update_ms_p99 / eco->update_ms, 2) + "×" : "–") << ".\n";
+  const auto times_eco = [&](const MethodSummary* m, double MethodSummary::*field) {
+    return (m ? m->name : std::string("–")) + " " + ratio(m, field, eco);
+  };
+  s << "\nECO against the others, each figure × ECO's time (goals: docs/benchmarks.md): update "
+    << times_eco(pass, &MethodSummary::update_ms) << ", " << times_eco(pcl, &MethodSummary::update_ms) << ", "
+    << times_eco(kd, &MethodSummary::update_ms) << "; voxel map " << times_eco(pcl, &MethodSummary::voxel_ms)
+    << "; KNN " << times_eco(kd, &MethodSummary::knn_ms) << "; ECO's update p99 / mean "
+    << (eco ? fixed(eco->update_ms_p99 / eco->update_ms, 2) + "×" : "–") << ".\n";
   s << "\nWhat each map costs its caller (per frame, after the first: page faults of the update, then the "
        "caller's own work right after it, a registration loop's preprocessing: a vector grown to the scan's size and a voxel hash map, allocated and freed):\n\n"
        "| method | update faults | caller ms | caller faults | caller / scan_pass's |\n|---|--:|--:|--:|--:|\n";
@@ -228,6 +231,25 @@ std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>
     s << "\nFree-space clearing: eco_clearing update / eco " << ratio(clearing, &MethodSummary::update_ms, eco)
       << ", Chamfer " << fixed(clearing->chamfer_m, 4) << " m against eco's " << (eco ? fixed(eco->chamfer_m, 4) : "–")
       << " m.\n";
+  }
+  return s.str();
+}
+
+std::string brief_table(const std::vector<MethodSummary>& summaries) {
+  const MethodSummary* eco = find(summaries, "eco");
+  const auto times_eco = [&](const MethodSummary& m, double MethodSummary::*field) {
+    return eco && eco->*field > 0 ? fixed(m.*field / eco->*field, 2) + "×" : std::string("–");
+  };
+  std::ostringstream s;
+  s << "ms per frame (mean after the first); × ECO's: the method's time over ECO's\n\n"
+    << "| method         | update |  × ECO's | voxel map |  × ECO's |    KNN |  × ECO's |\n"
+    << "|----------------|-------:|---------:|----------:|---------:|-------:|---------:|\n";
+  for (const MethodSummary& m : summaries) {
+    char row[160];
+    std::snprintf(row, sizeof row, "| %-14s | %6.2f | %8s | %9.2f | %8s | %6.2f | %8s |\n", m.name.c_str(), m.update_ms,
+                  times_eco(m, &MethodSummary::update_ms).c_str(), m.voxel_ms,
+                  times_eco(m, &MethodSummary::voxel_ms).c_str(), m.knn_ms, times_eco(m, &MethodSummary::knn_ms).c_str());
+    s << row;
   }
   return s.str();
 }

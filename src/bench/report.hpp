@@ -29,5 +29,8 @@ nlohmann::json bench_options_json(const BenchOptions& options);
 
 /// The Markdown tables of summary.md (without its heading), for the terminal as well.
 std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>& summaries);
+/// The run in a table that fits a terminal: each method's update, voxel map and KNN, and each
+/// over ECO's.
+std::string brief_table(const std::vector<MethodSummary>& summaries);
 
 }  // namespace eco::bench

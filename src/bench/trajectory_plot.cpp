@@ -1,5 +1,7 @@
 #include "bench/trajectory_plot.hpp"
 
+#include "bench/plot_style.hpp"
+
 #include <eco/io/error.hpp>
 
 #include <algorithm>
@@ -12,14 +14,6 @@ namespace eco::bench {
 namespace {
 
 constexpr double kSide = 640, kMargin = 50, kLegend = 170;
-struct Style {
-  const char* colour;
-  const char* marker;  // an SVG path centred on (0, 0)
-};
-const Style kStyles[] = {{"#d62728", "M-4,-4h8v8h-8z"},          // square
-                         {"#1f77b4", "M0,-5L5,4H-5z"},           // triangle
-                         {"#2ca02c", "M0,-5L5,0L0,5L-5,0z"},     // diamond
-                         {"#9467bd", "M-5,-1.5h10v3h-10z M-1.5,-5h3v10h-3z"}};  // cross
 
 }  // namespace
 
@@ -62,19 +56,18 @@ void write_trajectory_plot(const std::filesystem::path& path, const std::string&
     legend_y += 22;
   }
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    const Style& style = kStyles[i % std::size(kStyles)];
+    const PlotStyle style = plot_style(i);
     svg << "<polyline class='estimate' fill='none' stroke='" << style.colour << "' stroke-width='1.5' points='"
         << polyline(runs[i].poses) << "'/>\n";
     const std::size_t every = std::max<std::size_t>(1, runs[i].poses.size() / 12);
     for (std::size_t f = i * every / runs.size(); f < runs[i].poses.size(); f += every) {  // staggered per map
       const Eigen::Vector3d& t = runs[i].poses[f].translation();
-      svg << "<path d='" << style.marker << "' fill='" << style.colour << "' transform='translate(" << x_of(t.x())
-          << ',' << y_of(t.y()) << ")'/>\n";
+      draw_marker(svg, style, x_of(t.x()), y_of(t.y()));
     }
     svg << "<line x1='" << kSide << "' x2='" << kSide + 30 << "' y1='" << legend_y << "' y2='" << legend_y
-        << "' stroke='" << style.colour << "' stroke-width='1.5'/><path d='" << style.marker << "' fill='"
-        << style.colour << "' transform='translate(" << kSide + 15 << ',' << legend_y << ")'/><text x='"
-        << kSide + 36 << "' y='" << legend_y + 4 << "'>" << runs[i].map << "</text>\n";
+        << "' stroke='" << style.colour << "' stroke-width='1.5'/>";
+    draw_marker(svg, style, kSide + 15, legend_y);
+    svg << "<text x='" << kSide + 36 << "' y='" << legend_y + 4 << "'>" << runs[i].map << "</text>\n";
     legend_y += 22;
   }
   svg << "</svg>\n";

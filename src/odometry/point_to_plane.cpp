@@ -16,16 +16,14 @@ struct Plane {
   Eigen::Vector3d centroid;
 };
 
-/// The plane through `points` (least squares), when every point lies within `tolerance` of it
-/// and within `reach` of their centroid.
-bool fit_plane(std::span<const Neighbor> points, double tolerance, double reach, Plane& plane) {
+/// The plane through `points` (least squares), when every point lies within `tolerance` of it.
+bool fit_plane(std::span<const Neighbor> points, double tolerance, Plane& plane) {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const Neighbor& n : points) centroid += n.point;
   centroid /= double(points.size());
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   for (const Neighbor& n : points) {
     const Eigen::Vector3d d = n.point - centroid;
-    if (d.squaredNorm() > reach * reach) return false;
     scatter += d * d.transpose();
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
@@ -69,6 +67,7 @@ Alignment PointToPlane::align(const LocalMap& map, std::span<const Eigen::Vector
   neighbours_.resize(source.size() * k);
   found_.resize(source.size());
   const double max_sq = settings.max_distance * settings.max_distance;
+  const double reach_sq = settings.plane_reach * settings.plane_reach;
   std::array<Eigen::Isometry3d, 8> recent;  // the poses after the last eight steps
   for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
     result.iterations = iteration + 1;
@@ -86,8 +85,8 @@ Alignment PointToPlane::align(const LocalMap& map, std::span<const Eigen::Vector
     for (std::size_t i = 0; i < source.size(); ++i) {
       const std::span<const Neighbor> near(neighbours_.data() + i * k, found_[i]);
       Plane plane;
-      if (found_[i] < k || near.front().sq_dist > max_sq ||
-          !fit_plane(near, settings.plane_tolerance, settings.plane_reach, plane)) {
+      if (found_[i] < k || near.front().sq_dist > max_sq || near.back().sq_dist > reach_sq ||
+          !fit_plane(near, settings.plane_tolerance, plane)) {
         continue;
       }
       const double residual = plane.normal.dot(moved_[i] - plane.centroid);

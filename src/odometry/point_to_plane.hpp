@@ -19,7 +19,7 @@ struct AlignSettings {
   double max_distance = 1.0;      // [m] a source point farther than this from its nearest map point is left out
   double kernel_scale = 0.1;      // [m] the Geman–McClure kernel's scale
   double plane_tolerance = 0.2;   // [m] every neighbour this close to the fitted plane
-  double plane_reach = 1.0;       // [m] every neighbour this close to the neighbours' centroid
+  double plane_reach = 1.0;       // [m] every neighbour this close to the point registered
   int max_iterations = 50;
   double convergence = 1e-4;      // [m, rad] a step smaller than this ends the iterations
   double fit_distance = 0.1;      // [m] a correspondence this close to its plane counts as an inlier

@@ -32,8 +32,12 @@ for m in maps:
     check(len(poses) == 8 and all(len(p.split()) == 12 for p in poses), f"{m}/poses.txt: {poses}")
     frames = lines("all", m, "frames.csv")
     check(len(frames) == 9 and frames[0].startswith("frame,registered"), f"{m}/frames.csv: {frames[:2]}")
-    check(f"| {m} |" in done.stdout, f"{m} is missing from the summary:\n{done.stdout}")
-check("too short for any" in done.stdout, "a drive of 8 m has no 100 m segment:\n" + done.stdout)
+    check(f"| {m} " in done.stdout, f"{m} is missing from the printed table:\n{done.stdout}")
+summary_md = open(path("all", "summary.md")).read()
+for m in maps:
+    check(f"| {m} |" in summary_md, f"{m} is missing from summary.md:\n{summary_md}")
+check("too short for any" in summary_md, "a drive of 8 m has no 100 m segment:\n" + summary_md)
+check(max(len(line) for line in done.stdout.splitlines()) <= 100, "the printed table is wider than a terminal")
 summary = json.load(open(path("all", "summary.json")))
 check([m["map"] for m in summary["maps"]] == maps, str(summary))
 for m in summary["maps"]:  # the simulator's 8 frames are recovered to a few centimetres by every map

@@ -87,6 +87,7 @@ OdometryConfig indoor() {
   c.max_range = 30.0;
   c.min_range = 0.2;
   c.voxel_size = 0.2;
+  c.plane_reach = 3.0;  // planes from k points within 0.6 m: past the 0.4 m first step
   c.box_side = 60.0;
   c.plane_tolerance = 0.01;  // exact planes: five points across an edge are no plane
   return c;

@@ -43,6 +43,8 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--seed", o->seed, "query seed, and the simulator's without --data")->capture_default_str();
   cmd->add_option("--sim-frames", o->sim_frames, "length of the simulated drive without --data")->capture_default_str();
   cmd->add_flag("--check", o->check_every_frame, "check every method's invariants after every frame (slow)");
+  auto brief = std::make_shared<bool>(false);
+  cmd->add_flag("--brief", *brief, "print one table that fits a terminal (summary.md has them all)");
   cmd->add_flag("--snapshots", o->time_snapshots,
                 "then time publishing a snapshot every frame, with a reader thread on it, against a tree alone");
   cmd->add_option("--preset", *preset,
@@ -64,7 +66,7 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
       "  eco bench --methods eco,nanoflann --knn-queries 5000 --k 10\n"
       "  eco bench --data ../shared/data/kitti_mini_08 --preset robot-cap-0.2 --out results/kitti08-robot-cap\n"
       "  eco bench --config results/kitti08-robot-cap/config.json --out results/again");
-  return [o, data, workload, preset, cmd, flags, file, command_line] {
+  return [o, data, workload, preset, brief, cmd, flags, file, command_line] {
     file->load();  // a config.json's values, for the options not given here
     // the preset first; every option given (on the command line or in the file) then overrides it
     const bench::BenchOptions given = *o;
@@ -83,8 +85,10 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
     bench::pin_to_one_core();
     const bench::BenchRun run = bench::run_bench(*o, bench::terminal_progress());
     bench::write_results(o->out, run, command_line);
+    const std::vector<bench::MethodSummary> summaries = bench::summarize(run);
     std::printf("%s workload, %s\n\n%s\nresults: %s (%.1f s)\n", bench::to_string(o->workload).c_str(),
-                run.source.c_str(), bench::summary_tables(run, bench::summarize(run)).c_str(), o->out.c_str(),
+                run.source.c_str(),
+                (*brief ? bench::brief_table(summaries) : bench::summary_tables(run, summaries)).c_str(), o->out.c_str(),
                 run.seconds);
     return 0;
   };

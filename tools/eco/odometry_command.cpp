@@ -41,8 +41,8 @@ nlohmann::json options_json(const OdometryOptions& o) {
 std::string describe(const odometry::OdometryConfig& c) {
   char text[320];
   std::snprintf(text, sizeof text,
-                "range %.1f-%.1f m; map: %u points per %.2f m voxel in a %.0f m cube, fed the scan downsampled to "
-                "%.2f m; registration: point-to-plane on %.2f m voxels, k = %zu, %u thread(s)",
+                "range %.1f-%.1f m; map: %u points per %.2f m voxel, in a %.0f m cube, fed the scan at %.2f m;\n"
+                "registration: point-to-plane on %.2f m voxels, k = %zu, %u thread(s)",
                 c.min_range, c.max_range, c.max_points_per_voxel, c.voxel_size, c.box_side, 0.5 * c.voxel_size,
                 1.5 * c.voxel_size, c.neighbours, c.threads);
   return text;
@@ -90,7 +90,7 @@ int run(OdometryOptions o, const std::string& command_line) {
   };
   const std::vector<bench::OdometryRun> runs =
       bench::run_odometry(*scans, frames, maps, o.config, reference, progress);
-  std::printf("\n%s\nresults: %s\n",
+  std::printf("\n%s\nresults (every figure: summary.md; trajectory.svg): %s\n",
               bench::write_odometry_results(o.out, source, runs, reference, pose_output).c_str(), o.out.c_str());
   return 0;
 }

@@ -31,8 +31,9 @@ struct OdometryConfig {
   double box_side = 200.0;        ///< [m] MapSettings::box_side: the map reaches max_range around the sensor
   std::size_t neighbours = 5;     ///< k: the map points each plane is fitted to
   double plane_tolerance = 0.2;   ///< [m] a plane is used when all k points lie this close to it
-  /// [voxels] ... and within this many voxel_size of their centroid: k points spread wider (a
-  /// sparse part of the map) make a plane of little worth.
+  /// [voxels] ... and within this many voxel_size of the point registered, as a voxel-hash map's
+  /// 27 voxels around it would hold them: k points from farther (a sparse part of the map, or a
+  /// point not yet near its surface) make a plane of little worth.
   double plane_reach = 1.0;
   double initial_threshold = 2.0; ///< [m] the motion model's error assumed before it has samples
   double min_motion = 0.1;        ///< [m] model errors below this are not sampled
