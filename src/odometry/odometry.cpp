@@ -48,13 +48,15 @@ std::vector<Eigen::Vector3f> in_range(ScanView scan, const OdometryConfig& confi
   return kept;
 }
 
-/// Registration from `predicted`; when the scan then fits the map poorly (fewer than half its
-/// points on their planes: a turn begun or ended between frames, which constant velocity cannot
-/// foresee, and ICP does not recover from past a few degrees), again from the prediction turned
-/// about the sensor's vertical axis, keeping the best fit. `report` counts every iteration.
+/// Registration from `predicted`; when the scan then fits the map poorly (its share of points on
+/// their planes under half the last frame's `usual_fit`: a turn begun or ended between frames,
+/// which constant velocity cannot foresee and ICP does not recover from past a few degrees),
+/// again from the prediction turned about the sensor's vertical axis, keeping the best fit.
+/// `report` counts every iteration.
 Alignment align_turning(PointToPlane& aligner, const LocalMap& map, std::span<const Eigen::Vector3d> source,
-                        const Eigen::Isometry3d& predicted, const AlignSettings& settings, FrameReport& report) {
-  const auto fits = [&](const Alignment& a) { return 2 * a.inliers >= source.size(); };
+                        const Eigen::Isometry3d& predicted, const AlignSettings& settings, double usual_fit,
+                        FrameReport& report) {
+  const auto fits = [&](const Alignment& a) { return 2.0 * double(a.inliers) >= usual_fit * double(source.size()); };
   const auto count = [&](const Alignment& a) {
     report.iterations += a.iterations;
     report.query_ms += a.query_ms;
@@ -113,6 +115,7 @@ struct Odometry::Impl {
   PointToPlane aligner;
   Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
   std::vector<Eigen::Isometry3d> poses;
+  double last_fit = 0.0;  // the last registered frame's share of points on their planes (none: 0)
 };
 
 Odometry::Odometry(const OdometryConfig& config, std::unique_ptr<LocalMap> map) {
@@ -168,7 +171,8 @@ FrameReport Odometry::register_frame(ScanView scan) {
     settings.max_iterations = c.max_iterations;
     settings.convergence = c.convergence;
     settings.fit_distance = 0.1 * c.voxel_size;
-    const Alignment aligned = align_turning(o.aligner, *o.map, source, predicted, settings, report);
+    const Alignment aligned = align_turning(o.aligner, *o.map, source, predicted, settings, o.last_fit, report);
+    o.last_fit = double(aligned.inliers) / double(source.size());
     report.pose = aligned.pose;
     report.registered = true;
     report.correspondences = aligned.correspondences;
