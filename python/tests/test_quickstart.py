@@ -1,4 +1,5 @@
-"""The Python examples run: the quickstart writes its plot, the scipy comparison prints its ratios."""
+"""The Python examples run: the quickstart and the odometry write their plots, the scipy
+comparison prints its ratios."""
 
 import subprocess
 import sys
@@ -25,3 +26,10 @@ def test_quickstart_writes_its_plot(tmp_path):
 def test_scipy_comparison_prints_its_ratios():
     out = run("versus_scipy.py", "--frames", "3", "--queries", "50")
     assert "map upkeep" in out and out.count("x\n") == 3
+
+
+def test_odometry_example_tracks_the_drive_and_writes_its_plot(tmp_path):
+    plot = tmp_path / "odometry.png"
+    out = run("odometry.py", "--frames", "15", "--out", str(plot))
+    assert out.count("ms a frame") == 2 and "ATE" in out
+    assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
