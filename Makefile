@@ -41,7 +41,7 @@ demo: deps
 	@printf '\n== 2. A LiDAR odometry on each map: the same frames, the same registration ==\n'
 	$(BUILD)/bin/eco odometry --data $(DEMO_DATA) --map all --out $(DEMO_OUT)/odometry
 	@printf "\n== 3. The paper's Table II settings: ShiftInOnly, N_max = 8 ==\n"
-	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --preset paper --workload static --frames 60 --brief \
+	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --preset paper --workload static --frames 30 --brief \
 	  --out $(DEMO_OUT)/paper-static
 	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --preset paper --workload dynamic --brief --out $(DEMO_OUT)/paper-dynamic
 

@@ -130,9 +130,8 @@ std::string brief_odometry_table(const std::vector<OdometryRun>& runs) {
   for (const OdometryRun& run : runs) {
     const OdometryFigures f = figures_of(run);
     char row[200];
-    std::snprintf(row, sizeof row, "| %-10s | %5.2f | %8s | %8.0f %% | %10.1f %% | ", run.map.c_str(), f.frame_ms,
-                  eco_ms > 0 ? format("%.2f×", f.frame_ms / eco_ms).c_str() : "–",
-                  f.frame_ms > 0 ? 100 * (f.query_ms + f.update_ms) / f.frame_ms : 0.0,
+    std::snprintf(row, sizeof row, "| %-10s | %5.2f | %7.2f× | %8.0f %% | %10.1f %% | ", run.map.c_str(), f.frame_ms,
+                  eco_ms > 0 ? f.frame_ms / eco_ms : 0.0, f.frame_ms > 0 ? 100 * (f.query_ms + f.update_ms) / f.frame_ms : 0.0,
                   f.frame_ms > 0 ? 100 * f.update_ms / f.frame_ms : 0.0);
     s << row;
     if (segments) s << format("%7.3f", run.errors->translation_pct) << " | ";

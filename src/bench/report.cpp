@@ -237,19 +237,28 @@ std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>
 
 std::string brief_table(const std::vector<MethodSummary>& summaries) {
   const MethodSummary* eco = find(summaries, "eco");
-  const auto times_eco = [&](const MethodSummary& m, double MethodSummary::*field) {
-    return eco && eco->*field > 0 ? fixed(m.*field / eco->*field, 2) + "×" : std::string("–");
+  // a time and its ratio to ECO's, or dashes where the method has no such figure (scan_pass)
+  const auto cells = [&](const MethodSummary& m, double MethodSummary::*field, int width) {
+    char text[64];
+    const double v = m.*field;
+    if (!std::isfinite(v)) {
+      std::snprintf(text, sizeof text, "%*s | %8s", width, "-", "-");  // ASCII: printf pads bytes
+    } else if (eco && eco->*field > 0) {
+      std::snprintf(text, sizeof text, "%*.2f | %7.2f×", width, v, v / eco->*field);
+    } else {
+      std::snprintf(text, sizeof text, "%*.2f | %8s", width, v, "-");
+    }
+    return std::string(text);
   };
   std::ostringstream s;
   s << "ms per frame (mean after the first); × ECO's: the method's time over ECO's\n\n"
     << "| method         | update |  × ECO's | voxel map |  × ECO's |    KNN |  × ECO's |\n"
     << "|----------------|-------:|---------:|----------:|---------:|-------:|---------:|\n";
   for (const MethodSummary& m : summaries) {
-    char row[160];
-    std::snprintf(row, sizeof row, "| %-14s | %6.2f | %8s | %9.2f | %8s | %6.2f | %8s |\n", m.name.c_str(), m.update_ms,
-                  times_eco(m, &MethodSummary::update_ms).c_str(), m.voxel_ms,
-                  times_eco(m, &MethodSummary::voxel_ms).c_str(), m.knn_ms, times_eco(m, &MethodSummary::knn_ms).c_str());
-    s << row;
+    char name[32];
+    std::snprintf(name, sizeof name, "| %-14s | ", m.name.c_str());
+    s << name << cells(m, &MethodSummary::update_ms, 6) << " | " << cells(m, &MethodSummary::voxel_ms, 9) << " | "
+      << cells(m, &MethodSummary::knn_ms, 6) << " |\n";
   }
   return s.str();
 }

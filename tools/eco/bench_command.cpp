@@ -82,6 +82,7 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
     if (!data->empty()) o->data = *data;
     std::printf("preset %s: %s, %s workload, voxel map at %g m\n", preset->c_str(), describe_settings(o->config).c_str(),
                 bench::to_string(o->workload).c_str(), o->voxel_resolution);
+    std::fflush(stdout);  // the settings before the progress (on stderr), also into a pipe
     bench::pin_to_one_core();
     const bench::BenchRun run = bench::run_bench(*o, bench::terminal_progress());
     bench::write_results(o->out, run, command_line);

@@ -81,6 +81,7 @@ int run(OdometryOptions o, const std::string& command_line) {
   std::printf("odometry on %s, %zu frames, map%s %s\n%s\n", source.c_str(), frames, maps.size() > 1 ? "s" : "",
               o.map.c_str(), describe(o.config).c_str());
   if (reference.empty()) std::printf("no poses.txt: the run gives no accuracy figures\n");
+  std::fflush(stdout);  // the settings before the progress (on stderr), also into a pipe
   const std::size_t step = std::max<std::size_t>(1, frames / 10);
   const auto progress = [&](const std::string& map, std::size_t t) {
     if (t % step == step - 1 || t + 1 == frames) {
