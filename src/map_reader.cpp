@@ -10,7 +10,6 @@
 #include <atomic>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 namespace eco {
 
@@ -63,36 +62,50 @@ std::size_t MapReader::knn(const Eigen::Vector3d& query, std::span<std::uint32_t
   return detail::knn_ids_query(held(), query, ids, sq_dists, frame);
 }
 
-void MapReader::knn(std::span<const Eigen::Vector3d> queries, std::size_t k, std::span<Neighbor> out,
-                    std::span<std::size_t> found, unsigned threads, Frame frame) const {
-  const auto refuse = [](const std::string& what) { throw std::invalid_argument("eco::knn (batch): " + what); };
-  if (k == 0) refuse("k = 0 must be >= 1");
-  if (threads == 0) refuse("threads = 0 must be >= 1");
+namespace {
+
+constexpr std::size_t kChunk = 64;  // queries a thread takes at a time from a batch
+
+void refuse_batch(const std::string& what) { throw std::invalid_argument("eco::knn (batch): " + what); }
+
+void check_batch(std::span<const Eigen::Vector3d> queries, std::size_t k, std::span<Neighbor> out,
+                 std::span<std::size_t> found) {
+  if (k == 0) refuse_batch("k = 0 must be >= 1");
   if (out.size() != queries.size() * k) {
-    refuse("out.size() = " + std::to_string(out.size()) + " must be queries.size() * k = " +
-           std::to_string(queries.size() * k));
+    refuse_batch("out.size() = " + std::to_string(out.size()) + " must be queries.size() * k = " +
+                 std::to_string(queries.size() * k));
   }
   if (found.size() != queries.size()) {
-    refuse("found.size() = " + std::to_string(found.size()) + " must be queries.size() = " +
-           std::to_string(queries.size()));
+    refuse_batch("found.size() = " + std::to_string(found.size()) + " must be queries.size() = " +
+                 std::to_string(queries.size()));
   }
   for (std::size_t i = 0; i < queries.size(); ++i) {
-    if (!queries[i].allFinite()) refuse("queries[" + std::to_string(i) + "] is not finite");
+    if (!queries[i].allFinite()) refuse_batch("queries[" + std::to_string(i) + "] is not finite");
   }
+}
+
+}  // namespace
+
+void MapReader::knn(std::span<const Eigen::Vector3d> queries, std::size_t k, std::span<Neighbor> out,
+                    std::span<std::size_t> found, unsigned threads, Frame frame) const {
+  if (threads == 0) refuse_batch("threads = 0 must be >= 1");
+  check_batch(queries, k, out, found);
+  // no more threads than chunks: a helper with nothing to do would only cost its start
+  QueryThreads pool(unsigned(std::clamp<std::size_t>((queries.size() + kChunk - 1) / kChunk, 1, threads)));
+  knn(queries, k, out, found, pool, frame);
+}
+
+void MapReader::knn(std::span<const Eigen::Vector3d> queries, std::size_t k, std::span<Neighbor> out,
+                    std::span<std::size_t> found, QueryThreads& threads, Frame frame) const {
+  check_batch(queries, k, out, found);
   // chunks handed out as threads ask, so that a slower part of the batch does not hold one back
-  constexpr std::size_t kChunk = 64;
   std::atomic<std::size_t> next{0};
-  const auto work = [&] {
+  threads.run([&] {
     for (std::size_t begin = next.fetch_add(kChunk); begin < queries.size(); begin = next.fetch_add(kChunk)) {
       const std::size_t end = std::min(queries.size(), begin + kChunk);
       for (std::size_t i = begin; i < end; ++i) found[i] = knn(queries[i], out.subspan(i * k, k), frame);
     }
-  };
-  const std::size_t helpers_wanted = std::min<std::size_t>(threads, (queries.size() + kChunk - 1) / kChunk);
-  std::vector<std::thread> helpers;
-  for (std::size_t h = 1; h < helpers_wanted; ++h) helpers.emplace_back(work);
-  work();
-  for (std::thread& h : helpers) h.join();
+  });
 }
 
 std::vector<Neighbor> MapReader::radius(const Eigen::Vector3d& query, double radius, Frame frame) const {

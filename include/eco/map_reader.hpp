@@ -4,6 +4,7 @@
 /// arguments and results.
 
 #include <eco/config.hpp>
+#include <eco/query_threads.hpp>
 #include <eco/types.hpp>
 
 #include <Eigen/Geometry>
@@ -36,12 +37,16 @@ class MapReader {
                   Frame frame = Frame::World) const;
   /// A batch, as a registration loop asks it: the k nearest held points to each of `queries`,
   /// query i's nearest first in out[i * k, i * k + found[i]) (found[i] = min(k, size())), the
-  /// answers the one-query call gives. `threads` share the batch in contiguous slices (the
-  /// calling thread takes the first); nothing is allocated per query. Throws
+  /// answers the one-query call gives. `threads` (the calling thread one of them, started for the
+  /// call) take the queries 64 at a time as they finish; nothing is allocated per query. Throws
   /// std::invalid_argument naming the value, before any query runs, unless k >= 1, threads >= 1,
   /// out.size() == queries.size() * k, found.size() == queries.size() and every query is finite.
   void knn(std::span<const Eigen::Vector3d> queries, std::size_t k, std::span<Neighbor> out,
            std::span<std::size_t> found, unsigned threads = 1, Frame frame = Frame::World) const;
+  /// The same batch on threads kept between calls (query_threads.hpp): what a loop asking a
+  /// batch many times a second wants, as starting threads each call costs a call's tenth.
+  void knn(std::span<const Eigen::Vector3d> queries, std::size_t k, std::span<Neighbor> out,
+           std::span<std::size_t> found, QueryThreads& threads, Frame frame = Frame::World) const;
 
   /// Held points with ||p - query|| <= radius (a plain radius in metres, not squared),
   /// nearest first.

@@ -1,4 +1,4 @@
-// `eco`: an EgoOctree, queried in batches spread over MapSettings::threads.
+// `eco`: an EgoOctree, queried in batches spread over MapSettings::threads, kept between batches.
 
 #include "odometry/maps.hpp"
 
@@ -15,14 +15,14 @@ class EcoMap final : public LocalMap {
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override { tree_.update(world_T_sensor, scan); }
   void knn(std::span<const Eigen::Vector3d> queries, std::size_t k, std::span<Neighbor> out,
            std::span<std::size_t> found) const override {
-    tree_.knn(queries, k, out, found, threads_);
+    tree_.knn(queries, k, out, found, threads_);  // the helpers stay between the iterations' batches
   }
   [[nodiscard]] std::size_t size() const override { return tree_.size(); }
   [[nodiscard]] std::vector<Eigen::Vector3d> points() const override { return tree_.points(); }
 
  private:
   EgoOctree tree_;
-  unsigned threads_;
+  mutable QueryThreads threads_;  // batches run one after another: a query is const, the pool is not
 };
 
 }  // namespace

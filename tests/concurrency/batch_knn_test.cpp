@@ -1,14 +1,17 @@
 // The batch KNN (MapReader::knn over a span of queries): the answers of the one-query call, for
-// any thread count, on a tree and on its snapshot; bad arguments refused by name before any query.
+// any thread count and on threads kept between batches (QueryThreads), on a tree and on its
+// snapshot; bad arguments refused by name before any query.
 // Built under ThreadSanitizer too (make test-threads).
 
 #include "support/map_answers.hpp"
 
 #include <eco/ego_octree.hpp>
+#include <eco/query_threads.hpp>
 #include <eco/sim/simulator.hpp>
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -74,6 +77,47 @@ TEST(BatchKnn, AnswersAsTheOneQueryCallForAnyThreadCount) {
   const sim::Simulator drive(small_drive(8));
   update_with_attributes(tree, drive.frame(7), 7);
   expect_batch_is_serial(*snapshot, queries, 5, 3, Frame::World);
+}
+
+TEST(BatchKnn, ThreadsKeptBetweenBatchesAnswerAsTheOneQueryCallBatchAfterBatch) {
+  EgoOctree tree = driven_tree(6);
+  const std::vector<Eigen::Vector3d> queries = queries_for(tree, 700);
+  const std::size_t k = 5;
+  for (const unsigned count : {1u, 2u, 4u}) {
+    QueryThreads threads(count);
+    ASSERT_EQ(threads.size(), count);
+    for (int batch = 0; batch < 20; ++batch) {  // the same helpers, woken twenty times
+      const std::span<const Eigen::Vector3d> some(queries.data(), queries.size() - std::size_t(batch) * 31);
+      std::vector<Neighbor> out(some.size() * k);
+      std::vector<std::size_t> found(some.size(), 12345);
+      tree.knn(some, k, out, found, threads);
+      for (std::size_t i = 0; i < some.size(); ++i) {
+        const std::vector<Neighbor> one = tree.knn(some[i], k);
+        ASSERT_EQ(found[i], one.size()) << "batch " << batch << ", query " << i;
+        for (std::size_t j = 0; j < one.size(); ++j) ASSERT_EQ(out[i * k + j].point, one[j].point);
+      }
+    }
+    std::vector<Neighbor> out(k);
+    std::vector<std::size_t> found(1);
+    const std::vector<Eigen::Vector3d> bad{Eigen::Vector3d(std::nan(""), 0, 0)};
+    EXPECT_THROW(tree.knn(bad, k, out, found, threads), std::invalid_argument);  // and the pool goes on
+    tree.knn(std::span<const Eigen::Vector3d>(queries.data(), 1), k, out, found, threads);
+    EXPECT_EQ(found[0], k);
+  }
+  EXPECT_THROW(QueryThreads(0), std::invalid_argument);
+}
+
+TEST(BatchKnn, AHelpersExceptionReachesTheCallerAndThePoolGoesOn) {
+  QueryThreads threads(3);
+  std::atomic<int> calls{0};
+  EXPECT_THROW(threads.run([&] {
+    if (calls.fetch_add(1) == 1) throw std::runtime_error("one of three");
+  }),
+               std::runtime_error);
+  EXPECT_EQ(calls.load(), 3);
+  calls = 0;
+  threads.run([&] { calls.fetch_add(1); });
+  EXPECT_EQ(calls.load(), 3);
 }
 
 TEST(BatchKnn, MoreThreadsThanQueriesAndEmptyBatchesAndMaps) {
