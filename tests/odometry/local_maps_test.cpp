@@ -49,9 +49,11 @@ std::vector<Eigen::Vector3d> queries_near(const std::vector<Eigen::Vector3d>& he
 /// The k nearest of `candidates` to `q` by brute force: their squared distances, ascending.
 std::vector<double> brute_force(const std::vector<Eigen::Vector3d>& candidates, const Eigen::Vector3d& q, std::size_t k) {
   std::vector<double> d;
+  d.reserve(candidates.size());
   for (const Eigen::Vector3d& p : candidates) d.push_back((p - q).squaredNorm());
-  std::ranges::sort(d);
-  d.resize(std::min(k, d.size()));
+  const std::size_t n = std::min(k, d.size());
+  std::partial_sort(d.begin(), d.begin() + std::ptrdiff_t(n), d.end());
+  d.resize(n);
   return d;
 }
 
@@ -87,6 +89,8 @@ TEST(LocalMaps, EveryMapAnswersAsBruteForceOverWhatItHoldsAlongADrive) {
       std::vector<std::size_t> found(queries.size());
       map->knn(queries, k, out, found);
       const double side = small_settings().cell_size;
+      std::vector<VoxelKey> held_voxels;
+      for (const Eigen::Vector3d& p : held) held_voxels.push_back(voxel_of(p, side));
       for (std::size_t i = 0; i < queries.size(); ++i) {
         const std::span<const Neighbor> got(out.data() + i * k, found[i]);
         const std::string what = "query " + std::to_string(i);
@@ -100,9 +104,9 @@ TEST(LocalMaps, EveryMapAnswersAsBruteForceOverWhatItHoldsAlongADrive) {
         // voxel_hash: brute force over the 27 voxels around the query's
         const VoxelKey at = voxel_of(queries[i], side);
         std::vector<Eigen::Vector3d> around;
-        for (const Eigen::Vector3d& p : held) {
-          const VoxelKey v = voxel_of(p, side);
-          if (std::abs(v.x - at.x) <= 1 && std::abs(v.y - at.y) <= 1 && std::abs(v.z - at.z) <= 1) around.push_back(p);
+        for (std::size_t j = 0; j < held.size(); ++j) {
+          const VoxelKey& v = held_voxels[j];
+          if (std::abs(v.x - at.x) <= 1 && std::abs(v.y - at.y) <= 1 && std::abs(v.z - at.z) <= 1) around.push_back(held[j]);
         }
         expect_distances(got, brute_force(around, queries[i], k), what);
         const std::vector<double> nearest = brute_force(held, queries[i], 1);
