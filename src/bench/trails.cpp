@@ -51,7 +51,7 @@ TrailMeter::Census TrailMeter::census(const std::vector<Eigen::Vector3d>& held, 
 
 std::size_t TrailMeter::static_missing(const std::vector<Eigen::Vector3d>& reference,
                                        const std::vector<Eigen::Vector3d>& held) const {
-  std::unordered_set<Key, KeyHash> present;
+  std::unordered_set<Key> present;
   for (const Eigen::Vector3d& p : held) present.insert(key_of(p));
   std::size_t missing = 0;
   for (const Eigen::Vector3d& p : reference) {

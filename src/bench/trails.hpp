@@ -4,6 +4,8 @@
 // scan point it came from by world position on a millimetre grid (a stored point is within
 // 0.25 mm of its world point), trying the 26 cells around when rounding put it next door.
 
+#include <eco/types.hpp>
+
 #include <Eigen/Geometry>
 
 #include <cstdint>
@@ -38,15 +40,7 @@ class TrailMeter {
   void forget_beyond(const Eigen::Vector3d& position);
 
  private:
-  struct Key {
-    std::int64_t x, y, z;
-    friend bool operator==(const Key&, const Key&) = default;
-  };
-  struct KeyHash {
-    std::size_t operator()(const Key& k) const {
-      return std::size_t(k.x * 73856093) ^ std::size_t(k.y * 19349663) ^ std::size_t(k.z * 83492791);
-    }
-  };
+  using Key = VoxelKey;  // hashed by std::hash<VoxelKey> (eco/types.hpp)
   struct Scanned {
     std::uint32_t frame;
     bool moving;
@@ -57,7 +51,7 @@ class TrailMeter {
 
   double reach_;
   std::size_t stale_after_;
-  std::unordered_map<Key, Scanned, KeyHash> scanned_;
+  std::unordered_map<Key, Scanned> scanned_;
 };
 
 }  // namespace eco::bench

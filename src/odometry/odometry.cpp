@@ -104,9 +104,7 @@ struct Odometry::Impl {
     if (poses.empty()) return start;
     if (poses.size() == 1) return poses.back();
     const Eigen::Isometry3d& last = poses.back();
-    Eigen::Isometry3d next = last * (poses[poses.size() - 2].inverse() * last);
-    next.linear() = Eigen::Quaterniond(next.linear()).normalized().toRotationMatrix();  // as point_to_plane.cpp
-    return next;
+    return orthonormal(last * (poses[poses.size() - 2].inverse() * last));
   }
 
   OdometryConfig config;

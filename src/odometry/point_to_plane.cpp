@@ -44,10 +44,7 @@ Eigen::Isometry3d moved_by(const Eigen::Isometry3d& pose, const Eigen::Matrix<do
   Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
   if (angle > 0.0) delta.linear() = Eigen::AngleAxisd(angle, omega / angle).toRotationMatrix();
   delta.translation() = step.tail<3>();
-  Eigen::Isometry3d moved = pose * delta;
-  // products of rotations drift from orthonormal in the last bits; the map checks poses to 1e-6
-  moved.linear() = Eigen::Quaterniond(moved.linear()).normalized().toRotationMatrix();
-  return moved;
+  return orthonormal(pose * delta);
 }
 
 /// How far apart two poses are, as a step is measured: translation [m] plus rotation [rad].

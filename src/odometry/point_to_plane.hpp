@@ -34,6 +34,13 @@ struct Alignment {
   double solve_ms = 0.0;
 };
 
+/// `pose` with its rotation made orthonormal again: products of rotations drift in the last bits,
+/// and the maps check poses to 1e-6.
+[[nodiscard]] inline Eigen::Isometry3d orthonormal(Eigen::Isometry3d pose) {
+  pose.linear() = Eigen::Quaterniond(pose.linear()).normalized().toRotationMatrix();
+  return pose;
+}
+
 class PointToPlane {
  public:
   /// `source` (sensor frame) aligned to `map`, from `guess` (world_T_sensor). With fewer than six
