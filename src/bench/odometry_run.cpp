@@ -168,8 +168,7 @@ OdometryFigures figures_of(const OdometryRun& run) {
 
 std::vector<OdometryRun> run_odometry(const workloads::Workload& scans, std::size_t frames,
                                       const std::vector<std::string>& maps, const odometry::OdometryConfig& config,
-                                      std::span<const Eigen::Isometry3d> reference,
-                                      const std::function<void(const std::string&, std::size_t)>& progress) {
+                                      std::span<const Eigen::Isometry3d> reference, const FrameObserver& observe) {
   frames = std::min(frames, scans.size());
   std::vector<OdometryRun> runs;
   for (const std::string& map : maps) {
@@ -181,8 +180,9 @@ std::vector<OdometryRun> run_odometry(const workloads::Workload& scans, std::siz
       if (!reference.empty()) odo.set_start(reference.front());
       for (std::size_t t = 0; t < frames; ++t) {
         const workloads::WorkloadFrame frame = scans.frame(t);
-        slots.put(odo.register_frame(ScanView(frame.points)));
-        if (progress) progress(map, t);
+        const odometry::FrameReport report = odo.register_frame(ScanView(frame.points));
+        slots.put(report);
+        if (observe) observe(map, odo, report);
       }
     });
     for (const odometry::FrameReport& f : run.frames) run.poses.push_back(f.pose);

@@ -44,11 +44,13 @@ struct OdometryFigures {
 /// Runs the odometry under `config` with each of `maps` on frames [0, frames) of `scans`, one map
 /// after the other, each in a process of its own (forked: one map's heap does not shape the
 /// next's page faults). With `reference` (one pose per frame) each run starts at its first pose
-/// and is scored against it. `progress(map, frame)` is told of each frame (in the child).
-[[nodiscard]] std::vector<OdometryRun> run_odometry(
-    const workloads::Workload& scans, std::size_t frames, const std::vector<std::string>& maps,
-    const odometry::OdometryConfig& config, std::span<const Eigen::Isometry3d> reference,
-    const std::function<void(const std::string&, std::size_t)>& progress = {});
+/// and is scored against it. `observe` is shown each frame once registered (in the child).
+using FrameObserver = std::function<void(const std::string& map, const odometry::Odometry&, const odometry::FrameReport&)>;
+[[nodiscard]] std::vector<OdometryRun> run_odometry(const workloads::Workload& scans, std::size_t frames,
+                                                    const std::vector<std::string>& maps,
+                                                    const odometry::OdometryConfig& config,
+                                                    std::span<const Eigen::Isometry3d> reference,
+                                                    const FrameObserver& observe = {});
 
 /// How the estimate is written: world_T_lidar, or KITTI's camera-0 poses when `velo_to_cam` is given.
 struct PoseOutput {

@@ -4,9 +4,8 @@
 
 #include "core/tree_parts.hpp"
 #include "persist/byte_stream.hpp"
+#include "persist/checksum.hpp"
 #include "update/stages.hpp"
-
-#include <zlib.h>
 
 #include <array>
 #include <cmath>
@@ -18,16 +17,6 @@ namespace {
 constexpr std::string_view kMagic{"ECO map\n", 8};
 constexpr std::size_t kHeaderBytes = 8 + 4 + 8;  // magic, version, payload length
 constexpr std::size_t kChecksumBytes = 4;
-
-std::uint32_t checksum(std::string_view bytes) {
-  uLong crc = crc32(0L, Z_NULL, 0);
-  // zlib takes at most 4 GB a call
-  for (std::size_t at = 0; at < bytes.size(); at += std::size_t{1} << 30) {
-    const std::size_t n = std::min(bytes.size() - at, std::size_t{1} << 30);
-    crc = crc32(crc, reinterpret_cast<const Bytef*>(bytes.data() + at), uInt(n));
-  }
-  return std::uint32_t(crc);
-}
 
 // --- the configuration --------------------------------------------------------------------------
 

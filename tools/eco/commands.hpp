@@ -15,5 +15,6 @@ Run add_simulate(CLI::App& app, const std::string& command_line);
 Run add_bench(CLI::App& app, const std::string& command_line);
 Run add_run(CLI::App& app, const std::string& command_line);
 Run add_odometry(CLI::App& app, const std::string& command_line);
+Run add_view(CLI::App& app, const std::string& command_line);
 
 }  // namespace eco::cli

@@ -1,5 +1,5 @@
 // eco — the command-line tool: simulate a drive, benchmark ECO against its baselines, or stream
-// a sequence through ECO, or run a LiDAR odometry on it.
+// a sequence through ECO, run a LiDAR odometry on it, or look at a run in a web browser.
 
 #include "commands.hpp"
 
@@ -22,16 +22,20 @@ int main(int argc, char** argv) {
       "  eco bench --data data/sim --methods eco,octree_base,nanoflann --out results/robot\n"
       "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out results/run00\n"
       "  eco odometry --frames 200 --map all                  a LiDAR odometry on four maps, same frames\n"
+      "  eco run --frames 60 --record --out results/run && eco view results/run\n"
+      "                                                        the run in a web browser, frame by frame\n"
       "Run 'eco <command> --help' for each command's options.");
   const eco::cli::Run simulate = eco::cli::add_simulate(app, command_line);
   const eco::cli::Run bench = eco::cli::add_bench(app, command_line);
   const eco::cli::Run run = eco::cli::add_run(app, command_line);
   const eco::cli::Run odometry = eco::cli::add_odometry(app, command_line);
+  const eco::cli::Run view = eco::cli::add_view(app, command_line);
   CLI11_PARSE(app, argc, argv);
   try {
     if (app.got_subcommand("simulate")) return simulate();
     if (app.got_subcommand("bench")) return bench();
     if (app.got_subcommand("odometry")) return odometry();
+    if (app.got_subcommand("view")) return view();
     return run();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "eco: %s\n", e.what());

@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "options_file.hpp"
+#include "view_flags.hpp"
 
 #include "bench/odometry_run.hpp"
 #include "bench/sim_workload.hpp"
@@ -15,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace eco::cli {
 namespace {
@@ -48,7 +50,16 @@ std::string describe(const odometry::OdometryConfig& c) {
   return text;
 }
 
-int run(OdometryOptions o, const std::string& command_line) {
+/// The odometry's map after frame `f`, as the viewer shows it.
+void record_frame(view::Recorder& recorder, const odometry::Odometry& odo, const odometry::FrameReport& f,
+                  const std::optional<Eigen::Vector3d>& reference) {
+  std::vector<HeldPoint> held;
+  for (const Eigen::Vector3d& p : odo.map().points()) held.push_back({p, {}});
+  recorder.record(std::uint32_t(f.index), f.pose, held, view::occupied_voxels(held, odo.config().voxel_size),
+                  {f.scan_points, 0, 0, 0, f.map_points, f.update_ms}, reference);
+}
+
+int run(OdometryOptions o, const ViewFlags& viewing, const std::string& command_line) {
   o.config.validate();
   std::unique_ptr<workloads::Workload> scans;
   std::vector<Eigen::Isometry3d> reference;
@@ -82,17 +93,29 @@ int run(OdometryOptions o, const std::string& command_line) {
               o.map.c_str(), describe(o.config).c_str());
   if (reference.empty()) std::printf("no poses.txt: the run gives no accuracy figures\n");
   std::fflush(stdout);  // the settings before the progress (on stderr), also into a pipe
+  // the first map's run is recorded (in its child process) and, with --view, served from here
+  const std::filesystem::path shown_folder = std::filesystem::path(o.out) / maps.front();
+  const view::RunInfo shown{"odometry on " + maps.front() + ", " + source, o.config.box_side, o.config.voxel_size,
+                            frames, !reference.empty(), false};
+  LiveView live(viewing, shown_folder.string(), (shown_folder / "view").string(), shown);
   const std::size_t step = std::max<std::size_t>(1, frames / 10);
-  const auto progress = [&](const std::string& map, std::size_t t) {
+  const auto observe = [&](const std::string& map, const odometry::Odometry& odo, const odometry::FrameReport& f) {
+    const std::size_t t = f.index;
     if (t % step == step - 1 || t + 1 == frames) {
       std::fprintf(stderr, "\r%-10s frame %zu / %zu", map.c_str(), t + 1, frames);
       if (t + 1 == frames) std::fprintf(stderr, "\n");
     }
+    if (live.recorder() && map == maps.front()) {
+      record_frame(*live.recorder(), odo, f, t < reference.size() ? std::optional<Eigen::Vector3d>(reference[t].translation()) : std::nullopt);
+      live.pace();
+    }
   };
-  const std::vector<bench::OdometryRun> runs =
-      bench::run_odometry(*scans, frames, maps, o.config, reference, progress);
+  const std::vector<bench::OdometryRun> runs = bench::run_odometry(*scans, frames, maps, o.config, reference, observe);
   std::printf("\n%s\nresults (every figure: summary.md; trajectory.svg): %s\n",
               bench::write_odometry_results(o.out, source, runs, reference, pose_output).c_str(), o.out.c_str());
+  if (live.recorder()) std::printf("recorded for eco view: %s\n", shown_folder.c_str());
+  std::fflush(stdout);
+  live.linger();
   return 0;
 }
 
@@ -121,18 +144,21 @@ Run add_odometry(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--neighbours", c.neighbours, "k: map points each plane is fitted to")->capture_default_str();
   cmd->add_option("--max-iterations", c.max_iterations, "ICP iterations at most")->capture_default_str();
   cmd->add_option("--threads", c.threads, "threads ECO's batch KNN spreads the queries over")->capture_default_str();
+  auto viewing = std::make_shared<ViewFlags>(*cmd);
   auto file = std::make_shared<OptionsFile>(*cmd, "odometry");
   cmd->footer(
       "Writes <out>/<map>/poses.txt (KITTI format: camera-0 poses when the folder has calib.txt) and\n"
       "frames.csv, then summary.md, summary.json, trajectory.svg and config.json. Without poses.txt the\n"
       "run goes on, without accuracy figures. Defaults are KISS-ICP's for a 100 m LiDAR (voxel = range / 100).\n"
+      "--record (and --view) record the first map's run for eco view into <out>/<map>/view.\n"
       "Examples:\n"
       "  eco odometry --frames 200 --map all                 four maps on the simulator's drive\n"
       "  eco odometry --data ../shared/data/kitti_mini_00 --map all --out results/odometry00\n"
-      "  eco odometry --data ../shared/data/balm2_realworld_f20-99 --max-range 40 --voxel-size 0.4");
-  return [o, file, command_line] {
+      "  eco odometry --data ../shared/data/balm2_realworld_f20-99 --max-range 40 --voxel-size 0.4\n"
+      "  eco odometry --frames 200 --view                   watch the first map's run in a browser as it goes");
+  return [o, file, viewing, command_line] {
     file->load();
-    return run(*o, command_line);
+    return run(*o, *viewing, command_line);
   };
 }
 

@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "config_options.hpp"
 #include "options_file.hpp"
+#include "view_flags.hpp"
 
 #include "bench/sim_workload.hpp"
 #include "bench/stopwatch.hpp"
@@ -125,7 +126,7 @@ nlohmann::json run_options_json(const RunOptions& o) {
   return out;
 }
 
-int run(const RunOptions& o, const std::string& command_line) {
+int run(const RunOptions& o, const ViewFlags& viewing, const std::string& command_line) {
   std::unique_ptr<workloads::Workload> scans;
   if (o.data.empty()) {
     sim::SimConfig sim;
@@ -147,6 +148,8 @@ int run(const RunOptions& o, const std::string& command_line) {
   if (!o.load.empty()) std::printf("loaded %s: %zu points after frame %zu\n", o.load.c_str(), tree.size(), first - 1);
   std::printf("%6s %8s %8s %8s %8s %9s %8s %6s %6s %9s %7s\n", "frame", "scan", "inserted", "pruned", "cleared",
               "held", "nodes", "depth", "B/pt", "update ms", "trail");
+  view::RunInfo shown{o.data.empty() ? "simulated drive" : o.data, config.box_side, o.voxel, total};
+  LiveView live(viewing, o.out, (std::filesystem::path(o.out) / "view").string(), shown);
   std::unique_ptr<TrailReport> trails;
   double update_ms = 0.0;
   for (std::size_t t = first; t < total; ++t) {
@@ -165,6 +168,11 @@ int run(const RunOptions& o, const std::string& command_line) {
                 ms, trail.c_str());
     if (o.export_every > 0 && (t % o.export_every == 0 || t + 1 == total)) export_frame(o, tree, t);
     if (o.save_every > 0 && t % o.save_every == o.save_every - 1) tree.save(save_path(o));
+    if (view::Recorder* recorder = live.recorder()) {
+      recorder->record(std::uint32_t(t), frame.world_T_sensor, tree.points_with_attributes(), tree.voxel_keys(o.voxel),
+                       {u.scan_points, u.inserted, u.pruned, u.cleared, s.points, ms});
+      live.pace();
+    }
   }
   if (!o.save.empty() || o.save_every > 0) {
     tree.save(save_path(o));
@@ -175,6 +183,9 @@ int run(const RunOptions& o, const std::string& command_line) {
   if (trails) trails->print(ran ? update_ms / double(ran) : 0.0, ran);
   const std::string broken = tree.check_invariants();
   std::printf("invariants: %s\n", broken.empty() ? "all hold" : broken.c_str());
+  if (live.recorder()) std::printf("recorded for eco view: %s/view\n", o.out.c_str());
+  std::fflush(stdout);
+  live.linger();
   return broken.empty() ? 0 : 1;
 }
 
@@ -195,6 +206,7 @@ Run add_run(CLI::App& app, const std::string& command_line) {
       ->capture_default_str();
   cmd->add_option("--load", o->load, "go on from the map saved in FILE: its configuration, from the frame after its last")
       ->check(CLI::ExistingFile);
+  auto viewing = std::make_shared<ViewFlags>(*cmd);
   auto flags = std::make_shared<ConfigFlags>(*cmd, o->config);
   auto file = std::make_shared<OptionsFile>(*cmd, "run");
   cmd->footer(
@@ -209,14 +221,15 @@ Run add_run(CLI::App& app, const std::string& command_line) {
       "  eco run --data ../shared/data/kitti_mini_00 --density_cap.cell_size 0.1 --density_cap.max_points 2\n"
       "  eco run --frames 60 --clearing.enabled true     the simulator's cars: their trails, cleared or kept\n"
       "  eco run --frames 50 --save results/run/map.eco && eco run --frames 100 --load results/run/map.eco\n"
-      "                                                  the same drive in two runs: frames 0-49, then 50-99");
-  return [o, flags, file, command_line] {
+      "                                                  the same drive in two runs: frames 0-49, then 50-99\n"
+      "  eco run --frames 60 --view                        watch it in a browser as it runs (eco view: afterwards)");
+  return [o, flags, file, viewing, command_line] {
     file->load();
     if (!o->load.empty() && !flags->given().empty()) {
       throw std::invalid_argument("--load goes on under the saved map's own configuration; drop " + flags->given());
     }
     flags->apply(o->config);
-    return run(*o, command_line);
+    return run(*o, *viewing, command_line);
   };
 }
 
