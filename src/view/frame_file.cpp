@@ -59,7 +59,8 @@ std::vector<Eigen::Vector3f> get_floats(ByteReader& in, std::size_t n, const cha
 FrameRecord decode_payload(ByteReader& in) {
   FrameRecord r;
   if (const auto version = in.get<std::uint32_t>("version"); version != kVersion) {
-    in.fail("version " + std::to_string(version) + ", this viewer reads " + std::to_string(kVersion));
+    ByteReader::fail_at(in.offset() - 4, "version " + std::to_string(version) + ", this viewer reads " +
+                                             std::to_string(kVersion));
   }
   r.frame = in.get<std::uint32_t>("frame number");
   const auto flags = in.get<std::uint32_t>("flags");

@@ -126,7 +126,7 @@ function fetchFrame(n) {
       if (!response.ok) throw new Error((await response.text()).trim() || `frame ${n}: HTTP ${response.status}`);
       return response.arrayBuffer();
     }));
-    cache.get(n).catch(() => cache.delete(n));  // a failed fetch is tried again when next wanted
+    cache.get(n).catch(() => {});  // a failure is shown when the frame is, and fetched anew once it left the cache
   }
   return cache.get(n);
 }
