@@ -14,11 +14,14 @@ void put(std::string& out, T value) {
   out.append(reinterpret_cast<const char*>(&value), sizeof value);
 }
 
-void put_points(std::string& out, const std::vector<Eigen::Vector3f>& points) {
-  for (const Eigen::Vector3f& p : points) {
-    for (int axis = 0; axis < 3; ++axis) put(out, p[axis]);
+/// Every `stride`-th of `points`.
+void put_points(std::string& out, const std::vector<Eigen::Vector3f>& points, std::size_t stride) {
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    for (int axis = 0; axis < 3; ++axis) put(out, points[i][axis]);
   }
 }
+
+std::size_t thinned(std::size_t count, std::size_t stride) { return (count + stride - 1) / stride; }
 
 }  // namespace
 
@@ -45,6 +48,7 @@ std::string display_bytes(const FrameRecord& r, std::size_t budget) {
       {"stride", stride},          {"step", step},
       {"has_intensity", !r.intensity.empty()}, {"has_ids", !r.id.empty()},
       {"dropped", r.dropped.size()}, {"cleared", r.cleared.size()},
+      {"dropped_drawn", thinned(r.dropped.size(), stride)}, {"cleared_drawn", thinned(r.cleared.size(), stride)},
       {"voxels", r.voxels.size()}, {"voxels_drawn", voxels.size()},
       {"voxel_stride", voxel_stride}, {"voxel_size", r.voxel_size}};
   std::string json = header.dump();
@@ -63,9 +67,9 @@ std::string display_bytes(const FrameRecord& r, std::size_t budget) {
   if (!r.id.empty()) {
     for (const std::size_t i : kept) put(out, r.id[i]);
   }
-  put_points(out, r.dropped);
-  put_points(out, r.cleared);
-  put_points(out, voxels);
+  put_points(out, r.dropped, stride);
+  put_points(out, r.cleared, stride);
+  put_points(out, voxels, 1);
   return out;
 }
 

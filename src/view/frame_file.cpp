@@ -11,7 +11,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <sstream>
 
 namespace eco::view {
 namespace {
@@ -172,11 +171,12 @@ void write_frame_file(const std::string& path, const FrameRecord& record) {
 
 FrameRecord read_frame_file(const std::string& path) {
   const std::string name = std::filesystem::path(path).filename().string();
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw FrameFileError(name + ": cannot be opened");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return decode_frame(bytes.str(), name);
+  std::string bytes(std::size_t(in.tellg()), '\0');
+  in.seekg(0);
+  if (!in.read(bytes.data(), std::streamsize(bytes.size()))) throw FrameFileError(name + ": cannot be read");
+  return decode_frame(bytes, name);
 }
 
 double position_step(const std::vector<Eigen::Vector3f>& held) {

@@ -22,7 +22,7 @@ namespace eco::view {
 struct ServerOptions {
   std::string host = "127.0.0.1";  ///< loopback only unless asked
   int port = 8080;                 ///< 0: any free port
-  std::size_t budget = 400000;     ///< held points drawn a frame when the page does not say
+  std::size_t budget = 150000;     ///< held points drawn a frame when the page does not say
   std::string three_dir = "/usr/share/javascript/three";  ///< libjs-three's files
 };
 

@@ -176,9 +176,12 @@ TEST(DisplayFrame, ThinsToTheBudgetByAStride) {
       }
       ASSERT_EQ(d.age[k], r.age[k * stride]);
     }
-    // intensities and ids (4 + 4 B a drawn point), then dropped, cleared and the voxels' centres
+    // intensities and ids (4 + 4 B a drawn point), then dropped, cleared (thinned alike) and voxels
     const std::size_t voxels_drawn = d.header["voxels_drawn"];
-    EXPECT_EQ(d.bytes_after, 8 * drawn + 12 * (2 + 1 + voxels_drawn));
+    EXPECT_EQ(d.header["dropped_drawn"], stride == 1 ? 2 : 1);
+    EXPECT_EQ(d.header["cleared_drawn"], 1);
+    EXPECT_EQ(voxels_drawn, budget == 1 ? 1 : 3);
+    EXPECT_EQ(d.bytes_after, 8 * drawn + 12 * (std::size_t(d.header["dropped_drawn"]) + 1 + voxels_drawn));
   }
 }
 

@@ -34,8 +34,8 @@ function pointsLayer(size, color) {
   return layer;
 }
 const held = pointsLayer(2);
-const dropped = pointsLayer(4, COLORS.dropped);
-const cleared = pointsLayer(4, COLORS.cleared);
+const dropped = pointsLayer(3, COLORS.dropped);
+const cleared = pointsLayer(3, COLORS.cleared);
 const voxels = new THREE.Points(new THREE.BufferGeometry(),
   new THREE.PointsMaterial({ size: 0.1, sizeAttenuation: true, color: COLORS.voxel, transparent: true, opacity: 0.55 }));
 voxels.frustumCulled = false;
@@ -104,7 +104,7 @@ function decode(buffer) {
   const frame = Object.assign(header, { xyz: take(Int16Array, 3 * n), age: take(Uint16Array, n) });
   frame.intensity = header.has_intensity ? take(Float32Array, n) : null;
   frame.id = header.has_ids ? take(Uint32Array, n) : null;
-  Object.assign(frame, { droppedXyz: take(Float32Array, 3 * header.dropped), clearedXyz: take(Float32Array, 3 * header.cleared),
+  Object.assign(frame, { droppedXyz: take(Float32Array, 3 * header.dropped_drawn), clearedXyz: take(Float32Array, 3 * header.cleared_drawn),
     voxelXyz: take(Float32Array, 3 * header.voxels_drawn) });
   if (at !== buffer.byteLength) throw new Error(`frame ${header.frame}: ${buffer.byteLength - at} bytes left over`);
   return frame;
