@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <utility>
 #include <unordered_set>
 
 namespace eco::view {
@@ -54,36 +55,31 @@ FrameChanges Recorder::record(std::uint32_t frame, const Eigen::Isometry3d& worl
   const bool intensities =
       std::any_of(held.begin(), held.end(), [](const HeldPoint& p) { return p.attributes.intensity != 0.0f; });
   FrameChanges changes;
-  current_.clear();
-  current_.reserve(held.size());
   for (const HeldPoint& p : held) {
-    const PointKey key{p.point.x(), p.point.y(), p.point.z()};
-    std::uint32_t birth = frame;
-    if (const auto before = previous_.find(key); before != previous_.end() && before->second.count > 0) {
-      birth = before->second.frame;
-      --before->second.count;
-    } else {
-      ++changes.inserted;
-    }
-    Births& now = current_[key];
-    now.frame = now.count == 0 ? birth : std::min(now.frame, birth);
-    ++now.count;
+    Births& b = births_.try_emplace(PointKey{p.point.x(), p.point.y(), p.point.z()}, Births{frame, 0, 0}).first->second;
+    if (++b.now > b.before) ++changes.inserted;  // more here than the last frame held
     r.held.push_back((p.point - sensor).cast<float>());
-    r.age.push_back(std::uint16_t(std::min<std::uint32_t>(frame - birth, std::numeric_limits<std::uint16_t>::max())));
+    r.age.push_back(std::uint16_t(std::min<std::uint32_t>(frame - b.frame, std::numeric_limits<std::uint16_t>::max())));
     if (intensities) r.intensity.push_back(p.attributes.intensity);
     if (ids) r.id.push_back(p.attributes.id);
   }
   // what the last frame held and this one does not: outside the new box it was dropped, inside cleared
   const Eigen::Array3d lo = sensor.array() - info_.box_side / 2, hi = sensor.array() + info_.box_side / 2;
-  for (const auto& [key, left] : previous_) {
+  for (auto at = births_.begin(); at != births_.end();) {
+    const auto& [key, b] = *at;
     const Eigen::Vector3d p(key.x, key.y, key.z);
     const bool in_box = info_.box_side > 0.0 && (p.array() >= lo).all() && (p.array() < hi).all();
     std::vector<Eigen::Vector3f>& list = in_box ? r.cleared : r.dropped;
-    for (std::uint32_t i = 0; i < left.count; ++i) list.push_back((p - sensor).cast<float>());
+    for (std::uint32_t i = b.now; i < b.before; ++i) list.push_back((p - sensor).cast<float>());
+    if (b.now == 0) {
+      at = births_.erase(at);
+    } else {
+      at->second.before = std::exchange(at->second.now, 0);
+      ++at;
+    }
   }
   changes.dropped = r.dropped.size();
   changes.cleared = r.cleared.size();
-  std::swap(previous_, current_);
   if (!info_.map_counts) {
     figures.inserted = changes.inserted;
     figures.pruned = changes.dropped;

@@ -63,15 +63,18 @@ class Recorder {
   struct PointKeyHash {
     std::size_t operator()(const PointKey& k) const noexcept;
   };
+  /// The held points at one position: how many the last frame held, how many this frame holds
+  /// so far, and when the first of them came in.
   struct Births {
-    std::uint32_t frame = 0;  ///< when the first of them came in
-    std::uint32_t count = 0;  ///< held points at these coordinates
+    std::uint32_t frame = 0;
+    std::uint32_t before = 0;
+    std::uint32_t now = 0;
   };
   using BirthMap = std::unordered_map<PointKey, Births, PointKeyHash>;
 
   std::string folder_;
   RunInfo info_;
-  BirthMap previous_, current_;
+  BirthMap births_;  // one map carried over: a frame adds and erases only what changed
   std::FILE* index_ = nullptr;  // frames.csv, a line a frame, flushed as written
 };
 
