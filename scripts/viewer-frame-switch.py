@@ -63,21 +63,25 @@ def main():
                 driver.execute_script("document.getElementById('next').click()")
                 wait_until(driver, f"return ecoView.frame === {target} && ecoView.switches.length > {count}", "a step")
                 steps.append(driver.execute_script("return ecoView.switches[ecoView.switches.length - 1]"))
-            for kind, switches in (("step (fetched ahead)", steps), ("jump", jumps)):
+            for kind, switches in (("step", steps), ("jump", jumps)):
                 ms = [s["ms"] for s in switches]
                 fetch = [s["fetchMs"] for s in switches]
                 rows.append((budget, kind, statistics.median(s["drawn"] for s in switches), statistics.median(ms),
-                             max(ms), statistics.median(fetch), sum(s["prefetched"] for s in switches), len(switches)))
+                             max(ms), statistics.median(fetch)))
     finally:
         driver.quit()
         server.stop()
 
     print(f"Frames {MEASURED[0]}-{MEASURED[-1]} of `eco run --frames {FRAMES} --record` (simulator, defaults): "
           f"{min(held[t] for t in MEASURED):,}-{max(held[t] for t in MEASURED):,} held points.\n")
-    print("| budget | switch | drawn (median) | median ms | max ms | of it, waiting for the bytes (median ms) |")
-    print("|---:|---|---:|---:|---:|---:|")
-    for budget, kind, drawn, median, worst, fetch, prefetched, n in rows:
-        print(f"| {budget:,} | {kind} | {drawn:,.0f} | {median:.0f} | {worst:.0f} | {fetch:.0f} |")
+    print("| points drawn at most | drawn | step: median / max ms | jump: median / max ms | a jump's wait for the bytes |")
+    print("|--:|--:|--:|--:|--:|")
+    by_budget = {}
+    for budget, kind, drawn, median, worst, fetch in rows:
+        by_budget.setdefault(budget, {})[kind] = (drawn, median, worst, fetch)
+    for budget, kinds in by_budget.items():
+        step, jump = kinds["step"], kinds["jump"]
+        print(f"| {budget:,} | {step[0]:,.0f} | {step[1]:.0f} / {step[2]:.0f} | {jump[1]:.0f} / {jump[2]:.0f} | {jump[3]:.0f} |")
 
 
 if __name__ == "__main__":

@@ -2,7 +2,8 @@
 folder (raw, percent-encoded once and twice, absolute, through symlinks) get 404 and a line in its
 log; a missing folder, a folder without a recording and a port in use are refused with a message
 naming them; a corrupt and a truncated frame file are answered 422 with the file's name and the
-byte where it goes wrong; downloads dropped mid-transfer leave it serving.
+byte where it goes wrong; downloads dropped mid-transfer leave it serving. And an odometry's
+recording (eco odometry --record) serves its map with the reference path.
 
 usage: view_server_test.py ECO_CLI WORK_DIR"""
 
@@ -107,6 +108,19 @@ check(server.alive(), "the server died")
 log = server.stop()
 check(log.count("eco view: 404 for GET") >= len(refused), f"{log.count('404 for')} refusals logged of {len(refused)}:\n{log}")
 check("eco view: 422 for frame 3: frame_000003.bin" in log, f"the damaged frame is not logged:\n{log}")
+
+# an odometry's recording: its map's points, its path beside the reference path
+eco("odometry", "--frames", "3", "--record", "--out", "odometry")
+server = ViewServer([CLI, "view", os.path.join(WORK, "odometry", "eco"), "--port", "0"])
+run = json.loads(server.get("/api/run")[1])
+check(run["run"]["has_reference"] and run["run"]["title"].startswith("odometry on eco"), f"odometry run.json: {run['run']}")
+check(run["frames"]["frame"] == [0, 1, 2] and all(ref is not None for ref in run["frames"]["ref"]),
+      f"odometry index: {run['frames']}")
+check(run["frames"]["inserted"][0] == run["frames"]["held"][0] > 0, f"odometry counts: {run['frames']}")
+status, body = server.get("/api/frame?n=2")
+check(status == 200 and json.loads(body[4:4 + struct.unpack_from("<I", body)[0]])["held"] == run["frames"]["held"][2],
+      f"odometry frame 2: {status}")
+server.stop()
 
 # the folder: missing, without a recording; the port: taken
 done = eco("view", "missing-run", ok=False)
