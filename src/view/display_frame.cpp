@@ -29,19 +29,19 @@ std::size_t thinning_stride(std::size_t count, std::size_t budget) {
   return budget == 0 || count <= budget ? 1 : (count + budget - 1) / budget;
 }
 
-std::string display_bytes(const FrameRecord& r, std::size_t budget) {
+std::string display_bytes(const FrameRecord& r, std::size_t budget, bool with_voxels) {
   const std::size_t stride = thinning_stride(r.held.size(), budget);
   const std::size_t voxel_stride = thinning_stride(r.voxels.size(), budget);
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < r.held.size(); i += stride) kept.push_back(i);
   std::vector<Eigen::Vector3f> voxels;
   const Eigen::Vector3d sensor = r.world_T_sensor.translation();
-  for (std::size_t i = 0; i < r.voxels.size(); i += voxel_stride) {
+  for (std::size_t i = 0; with_voxels && i < r.voxels.size(); i += voxel_stride) {
     const VoxelKey& k = r.voxels[i];
     voxels.push_back(((Eigen::Vector3d(double(k.x), double(k.y), double(k.z)).array() + 0.5) * r.voxel_size -
                       sensor.array()).matrix().cast<float>());
   }
-  const double step = position_step(r.held);
+  const double step = r.step > 0.0 ? r.step : position_step(r.held);
   const nlohmann::json header{
       {"frame", r.frame},          {"sensor", {sensor.x(), sensor.y(), sensor.z()}},
       {"held", r.held.size()},     {"drawn", kept.size()},
@@ -58,7 +58,7 @@ std::string display_bytes(const FrameRecord& r, std::size_t budget) {
   put(out, std::uint32_t(json.size()));
   out += json;
   for (const std::size_t i : kept) {
-    for (int axis = 0; axis < 3; ++axis) put(out, std::int16_t(std::lround(double(r.held[i][axis]) / step)));
+    for (int axis = 0; axis < 3; ++axis) put(out, in_steps(r.held[i][axis], step));
   }
   for (const std::size_t i : kept) put(out, r.age[i]);
   if (!r.intensity.empty()) {

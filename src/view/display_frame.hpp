@@ -16,7 +16,8 @@ namespace eco::view {
 /// sensor's as int16 × 3 in units of `step` and its age as uint16, then (when the frame has them)
 /// float32 intensities and uint32 ids, then float32 xyz minus the sensor position of the drawn
 /// dropped points, cleared points and voxel centres.
-[[nodiscard]] std::string display_bytes(const FrameRecord& record, std::size_t budget);
+/// Without `with_voxels` no voxel centre is sent (voxels_drawn is 0; voxels still counts them).
+[[nodiscard]] std::string display_bytes(const FrameRecord& record, std::size_t budget, bool with_voxels = true);
 
 /// k of "every k-th": the stride that keeps at most `budget` of `count` (1 when all fit).
 [[nodiscard]] std::size_t thinning_stride(std::size_t count, std::size_t budget);

@@ -80,6 +80,7 @@ FrameRecord decode_payload(ByteReader& in) {
   std::vector<std::int16_t> q;
   in.get_values(q, 3 * std::size_t(held), "held points");
   r.held.resize(held);
+  r.step = step;
   for (std::size_t i = 0; i < held; ++i) {
     r.held[i] = (Eigen::Vector3d(q[3 * i], q[3 * i + 1], q[3 * i + 2]) * step).cast<float>();
   }
@@ -119,7 +120,7 @@ std::string encode_frame(const FrameRecord& r) {
   out.put(r.voxel_size);
   for (const std::size_t count : {n, r.dropped.size(), r.cleared.size(), r.voxels.size()}) out.put(std::uint32_t(count));
   for (const Eigen::Vector3f& p : r.held) {
-    for (int axis = 0; axis < 3; ++axis) out.put(std::int16_t(std::lround(double(p[axis]) / step)));
+    for (int axis = 0; axis < 3; ++axis) out.put(in_steps(p[axis], step));
   }
   for (const std::uint16_t a : r.age) out.put(a);
   for (const float i : r.intensity) out.put(i);

@@ -19,8 +19,9 @@ struct FrameRecord {
   std::uint32_t frame = 0;
   Eigen::Isometry3d world_T_sensor = Eigen::Isometry3d::Identity();
   double voxel_size = 0.1;  ///< [m] of `voxels`
-  /// Held points minus the sensor position [m]; stored as int16 steps of `step` per axis.
+  /// Held points minus the sensor position [m]; stored as int16 steps of position_step(held).
   std::vector<Eigen::Vector3f> held;
+  double step = 0.0;  ///< the step `held` was read in (0 until read: encode_frame finds its own)
   std::vector<std::uint16_t> age;  ///< frames since each held point came in (0: inserted this frame)
   std::vector<float> intensity;    ///< empty, or one per held point
   std::vector<std::uint32_t> id;   ///< empty, or one per held point
@@ -47,6 +48,11 @@ void write_frame_file(const std::string& path, const FrameRecord& record);
 
 /// The int16 step both the file and the page use for `held`: the largest extent / 32767.
 [[nodiscard]] double position_step(const std::vector<Eigen::Vector3f>& held);
+/// `value` / `step` rounded to the nearest int16 step (`value` within 32767 steps).
+[[nodiscard]] inline std::int16_t in_steps(float value, double step) {
+  const double steps = double(value) / step;
+  return std::int16_t(steps >= 0.0 ? steps + 0.5 : steps - 0.5);
+}
 
 /// "frame_000042.bin": the name a frame's file has in a recording.
 [[nodiscard]] std::string frame_file_name(std::uint32_t frame);

@@ -121,6 +121,7 @@ ViewServer::ViewServer(const std::string& run_folder, const ServerOptions& optio
   recording_ = fs::canonical(recording_folder(run_folder)).string();
   root_ = fs::canonical(run_folder).string();
   route();
+  server_->set_tcp_nodelay(true);  // a frame's header and body leave at once, not a delayed ACK apart
   port_ = options.port == 0 ? server_->bind_to_any_port(options.host)
                             : (server_->bind_to_port(options.host, options.port) ? options.port : -1);
   if (port_ < 0) {
@@ -173,7 +174,8 @@ void ViewServer::route() {
     const fs::path file = fs::path(recording_) / frame_file_name(std::uint32_t(*n));
     if (!fs::is_regular_file(file)) return not_found(request, response, "frame " + std::to_string(*n) + " is not recorded");
     try {
-      response.set_content(display_bytes(read_frame_file(file.string()), *budget), "application/octet-stream");
+      const bool voxels = request.get_param_value("voxels") != "0";
+      response.set_content(display_bytes(read_frame_file(file.string()), *budget, voxels), "application/octet-stream");
     } catch (const FrameFileError& e) {
       std::fprintf(stderr, "eco view: 422 for frame %zu: %s\n", *n, e.what());
       response.status = 422;

@@ -185,6 +185,15 @@ TEST(DisplayFrame, ThinsToTheBudgetByAStride) {
   }
 }
 
+TEST(DisplayFrame, LeavesOutTheVoxelMapWhenAsked) {
+  const FrameRecord r = decode_frame(encode_frame(sample_frame(10, false)), "f.bin");
+  const Display d = parse_display(display_bytes(r, 100, false));
+  EXPECT_EQ(d.header["voxels"], 3);
+  EXPECT_EQ(d.header["voxels_drawn"], 0);
+  EXPECT_EQ(d.header["step"], r.step);  // the file's own step: its int16 values sent unchanged
+  EXPECT_EQ(d.bytes_after, 12u * (2 + 1));
+}
+
 TEST(DisplayFrame, SendsNoAttributesItDoesNotHave) {
   const Display d = parse_display(display_bytes(sample_frame(10, false), 100));
   EXPECT_FALSE(d.header["has_intensity"]);

@@ -54,6 +54,7 @@ try:
     # the voxel map, and each colouring, change what is drawn
     before = driver.execute_script("return ecoView.pixels()")
     driver.find_element(By.ID, "show-voxels").click()
+    wait_until(driver, "return ecoView.voxelsDrawn > 0", "the voxel map fetched")
     with_voxels = driver.execute_script("return ecoView.pixels()")
     check(with_voxels["sum"] != before["sum"] and with_voxels["lit"] > before["lit"],
           f"the voxel map changed nothing: {before} -> {with_voxels}")

@@ -122,7 +122,8 @@ function setPoints(layer, xyz, colors) {
 const cache = new Map();  // frame number → Promise of its ArrayBuffer
 function fetchFrame(n) {
   if (!cache.has(n)) {
-    cache.set(n, fetch(`/api/frame?n=${n}&budget=${budget()}`).then(async (response) => {
+    const voxels = $('show-voxels').checked ? 1 : 0;  // the voxel map is fetched only while shown
+    cache.set(n, fetch(`/api/frame?n=${n}&budget=${budget()}&voxels=${voxels}`).then(async (response) => {
       if (!response.ok) throw new Error((await response.text()).trim() || `frame ${n}: HTTP ${response.status}`);
       return response.arrayBuffer();
     }));
@@ -211,7 +212,8 @@ function updatePanel(frame) {
   $('update-ms').textContent = `${cols.update_ms[i].toFixed(2)} ms`;
   $('voxel-count').textContent = frame ? fmt(frame.voxels) : '–';
   $('drawn-count').textContent = frame ? `${fmt(frame.drawn)}${frame.stride === 1 ? ' (all)' : ` (1 in ${frame.stride})`}` : '–';
-  Object.assign(window.ecoView, { frame: state.frames[i], held: cols.held[i], ready: window.ecoView.ready || !!frame });
+  Object.assign(window.ecoView, { frame: state.frames[i], held: cols.held[i], ready: window.ecoView.ready || !!frame,
+    voxelsDrawn: frame ? frame.voxels_drawn : 0 });
   drawChart();
 }
 function setError(text) {
@@ -278,6 +280,12 @@ $('next').addEventListener('click', () => step(1));
 $('play').addEventListener('click', () => play(!state.playing));
 $('follow').addEventListener('change', (e) => { if (e.target.checked) { play(false); show(state.frames.length - 1); } });
 $('budget').addEventListener('change', () => { cache.clear(); show(state.index); });
+$('show-voxels').addEventListener('change', (e) => {
+  if (e.target.checked && state.frame && state.frame.voxels_drawn < Math.min(state.frame.voxels, 1)) {
+    cache.clear();  // fetched without the voxel map
+    show(state.index);
+  }
+});
 for (const id of ['color-by', 'show-changes', 'show-voxels', 'show-box', 'show-path']) {
   $(id).addEventListener('change', () => { if (state.frame) draw(); });
 }
