@@ -6,19 +6,12 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <bit>
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <utility>
 #include <unordered_set>
 
 namespace eco::view {
-
-std::size_t Recorder::PointKeyHash::operator()(const PointKey& k) const noexcept {
-  const auto mix = [](std::uint64_t h, double v) { return (h ^ std::bit_cast<std::uint64_t>(v)) * 0x100000001b3ull; };
-  return std::size_t(mix(mix(mix(0xcbf29ce484222325ull, k.x), k.y), k.z));
-}
 
 Recorder::Recorder(const std::string& folder, const RunInfo& info) : folder_(folder), info_(info) {
   namespace fs = std::filesystem;
@@ -56,8 +49,9 @@ FrameChanges Recorder::record(std::uint32_t frame, const Eigen::Isometry3d& worl
       std::any_of(held.begin(), held.end(), [](const HeldPoint& p) { return p.attributes.intensity != 0.0f; });
   FrameChanges changes;
   for (const HeldPoint& p : held) {
-    Births& b = births_.try_emplace(PointKey{p.point.x(), p.point.y(), p.point.z()}, Births{frame, 0, 0}).first->second;
-    if (++b.now > b.before) ++changes.inserted;  // more here than the last frame held
+    BirthTable::Entry& b = births_.at(p.point, frame);
+    if (b.now < std::numeric_limits<std::uint16_t>::max()) ++b.now;
+    if (b.now > b.before) ++changes.inserted;  // more here than the last frame held
     r.held.push_back((p.point - sensor).cast<float>());
     r.age.push_back(std::uint16_t(std::min<std::uint32_t>(frame - b.frame, std::numeric_limits<std::uint16_t>::max())));
     if (intensities) r.intensity.push_back(p.attributes.intensity);
@@ -65,19 +59,13 @@ FrameChanges Recorder::record(std::uint32_t frame, const Eigen::Isometry3d& worl
   }
   // what the last frame held and this one does not: outside the new box it was dropped, inside cleared
   const Eigen::Array3d lo = sensor.array() - info_.box_side / 2, hi = sensor.array() + info_.box_side / 2;
-  for (auto at = births_.begin(); at != births_.end();) {
-    const auto& [key, b] = *at;
-    const Eigen::Vector3d p(key.x, key.y, key.z);
+  births_.end_frame([&](const BirthTable::Entry& b) {
+    if (b.now >= b.before) return;
+    const Eigen::Vector3d p(b.x, b.y, b.z);
     const bool in_box = info_.box_side > 0.0 && (p.array() >= lo).all() && (p.array() < hi).all();
     std::vector<Eigen::Vector3f>& list = in_box ? r.cleared : r.dropped;
-    for (std::uint32_t i = b.now; i < b.before; ++i) list.push_back((p - sensor).cast<float>());
-    if (b.now == 0) {
-      at = births_.erase(at);
-    } else {
-      at->second.before = std::exchange(at->second.now, 0);
-      ++at;
-    }
-  }
+    list.insert(list.end(), b.before - b.now, (p - sensor).cast<float>());
+  });
   changes.dropped = r.dropped.size();
   changes.cleared = r.cleared.size();
   if (!info_.map_counts) {

@@ -5,6 +5,7 @@
 // dropped and cleared by comparing the held points with the last frame's, so it works for any map
 // that can list its points.
 
+#include "view/birth_table.hpp"
 #include "view/frame_file.hpp"
 #include "view/run_index.hpp"
 
@@ -16,7 +17,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace eco::view {
@@ -55,26 +55,9 @@ class Recorder {
   [[nodiscard]] const std::string& folder() const { return folder_; }
 
  private:
-  /// A held point by its exact coordinates.
-  struct PointKey {
-    double x, y, z;
-    friend bool operator==(const PointKey&, const PointKey&) = default;
-  };
-  struct PointKeyHash {
-    std::size_t operator()(const PointKey& k) const noexcept;
-  };
-  /// The held points at one position: how many the last frame held, how many this frame holds
-  /// so far, and when the first of them came in.
-  struct Births {
-    std::uint32_t frame = 0;
-    std::uint32_t before = 0;
-    std::uint32_t now = 0;
-  };
-  using BirthMap = std::unordered_map<PointKey, Births, PointKeyHash>;
-
   std::string folder_;
   RunInfo info_;
-  BirthMap births_;  // one map carried over: a frame adds and erases only what changed
+  BirthTable births_;  // carried over: a frame adds and forgets only what changed
   std::FILE* index_ = nullptr;  // frames.csv, a line a frame, flushed as written
 };
 

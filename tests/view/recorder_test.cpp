@@ -1,8 +1,8 @@
 // The recorder against the tree's own counts: on a simulated street with free-space clearing, what
 // it finds inserted, dropped and cleared each frame is what the update reported; every held point's
 // age is the frames since its scan (the scan's frame rides in its id); dropped points lie outside
-// the new box and cleared ones inside; frames.csv reads back what was written, and a damaged
-// line is named.
+// the new box and cleared ones inside; the table of births agrees with std::map; frames.csv reads
+// back what was written, and a damaged line is named.
 
 #include "view/recorder.hpp"
 #include "view/run_index.hpp"
@@ -14,7 +14,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <fstream>
+#include <map>
+#include <random>
 
 namespace eco::view {
 namespace {
@@ -113,6 +116,47 @@ TEST(Recorder, CountsItselfForAMapThatDoesNot) {
   EXPECT_EQ(index.rows[1].figures.cleared, 2u);
   ASSERT_TRUE(index.rows[1].reference);
   EXPECT_EQ(*index.rows[1].reference, Eigen::Vector3d(5, 0, 0.1));
+}
+
+TEST(BirthTable, KeepsWhatAMapWouldThroughGrowthAndDeletions) {
+  // against std::map over 40 frames of random positions on a coarse grid (so that many repeat),
+  // each frame keeping a random half of the last one's and adding new ones
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> cell(-40, 40);
+  using Key = std::array<double, 3>;
+  std::map<Key, std::pair<std::uint32_t, int>> oracle;  // birth frame, points held before
+  BirthTable table;
+  std::vector<Key> held;
+  for (std::uint32_t frame = 0; frame < 40; ++frame) {
+    std::vector<Key> now;
+    for (const Key& k : held) {
+      if (rng() % 2) now.push_back(k);
+    }
+    for (int i = 0; i < 3000; ++i) now.push_back({cell(rng) * 0.25, cell(rng) * 0.25, cell(rng) * 0.25});
+    std::map<Key, int> counts;
+    for (const Key& k : now) {
+      BirthTable::Entry& e = table.at(Eigen::Vector3d(k[0], k[1], k[2]), frame);
+      ++e.now;
+      ++counts[k];
+      const auto known = oracle.find(k);
+      ASSERT_EQ(e.frame, known == oracle.end() ? frame : known->second.first);
+      ASSERT_EQ(e.before, known == oracle.end() ? 0 : known->second.second);
+    }
+    std::size_t visited = 0;
+    table.end_frame([&](const BirthTable::Entry& e) {
+      ++visited;
+      const Key k{e.x, e.y, e.z};
+      ASSERT_EQ(e.now, counts.count(k) ? counts[k] : 0);
+    });
+    EXPECT_EQ(visited, oracle.size() + std::count_if(counts.begin(), counts.end(), [&](const auto& c) {
+                         return !oracle.count(c.first);
+                       }));
+    std::map<Key, std::pair<std::uint32_t, int>> next;
+    for (const auto& [k, n] : counts) next[k] = {oracle.count(k) ? oracle[k].first : frame, n};
+    oracle = std::move(next);
+    EXPECT_EQ(table.size(), oracle.size());
+    held = std::move(now);
+  }
 }
 
 TEST(RunIndex, NamesTheLineAndFieldThatIsWrong) {
