@@ -232,6 +232,9 @@ function drawChart() {
   g.strokeStyle = '#2b3140'; g.fillStyle = '#6b7486'; g.font = '10px sans-serif';
   g.beginPath(); g.moveTo(pad, y(0)); g.lineTo(w - 4, y(0)); g.stroke();
   g.fillText(top.toFixed(1), 0, y(top) + 8); g.fillText('0', 8, y(0) + 3);
+  const frames = state.frames;
+  g.fillText(`frame ${frames[0]}`, pad, h - 2);
+  g.fillText(`${frames[frames.length - 1]}`, w - 4 - g.measureText(`${frames[frames.length - 1]}`).width, h - 2);
   g.strokeStyle = '#5fb4ff'; g.beginPath();
   ms.forEach((v, i) => (i ? g.lineTo(x(i), y(v)) : g.moveTo(x(i), y(v))));
   g.stroke();
