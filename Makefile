@@ -9,7 +9,7 @@ DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev libeigen3-dev libgtes
                    libnanoflann-dev libcli11-dev nlohmann-json3-dev libpcl-dev \
                    pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest \
                    python3-matplotlib python3-pip python3-venv python3-setuptools python3-wheel \
-                   libcpp-httplib-dev libjs-three chromium chromium-driver python3-selenium
+                   pkg-config libcpp-httplib-dev libjs-three chromium chromium-driver python3-selenium
 ## Debian's own interpreter, whatever else is first on PATH (pyenv, conda).
 PYTHON     ?= /usr/bin/python3
 

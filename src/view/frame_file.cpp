@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
 namespace eco::view {
 namespace {
@@ -24,6 +25,13 @@ constexpr std::uint32_t kVersion = 1;
 constexpr std::uint32_t kHasIntensity = 1u << 0;
 constexpr std::uint32_t kHasIds = 1u << 1;
 constexpr double kSteps = 32767.0;  // int16's largest magnitude
+
+/// `value` as a person reads it: 0.1, 1e+300.
+std::string shortest(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
 
 /// The sensor's voxel: voxel keys are stored as int16 offsets from it.
 VoxelKey sensor_voxel(const Eigen::Isometry3d& pose, double voxel_size) {
@@ -67,11 +75,18 @@ FrameRecord decode_payload(ByteReader& in) {
   for (int row = 0; row < 3; ++row) {
     for (int col = 0; col < 4; ++col) r.world_T_sensor.matrix()(row, col) = in.get<double>("pose");
   }
-  if (!r.world_T_sensor.matrix().allFinite()) in.fail("the pose is not finite");
+  // bounds that keep every conversion below in range (a position in float, a voxel key in int64)
+  if (!r.world_T_sensor.matrix().allFinite() || r.world_T_sensor.translation().cwiseAbs().maxCoeff() > 1e12) {
+    ByteReader::fail_at(in.offset() - 96, "the pose is not finite or lies beyond 1e12 m");
+  }
   const auto step = in.get<double>("quantum");
+  if (!(step > 0.0 && step <= 100.0)) {
+    ByteReader::fail_at(in.offset() - 8, "quantum " + shortest(step) + " m is not in (0, 100]");
+  }
   r.voxel_size = in.get<double>("voxel size");
-  if (!(step > 0.0) || !std::isfinite(step)) in.fail("quantum " + std::to_string(step) + " is not a positive length");
-  if (!(r.voxel_size > 0.0) || !std::isfinite(r.voxel_size)) in.fail("voxel size is not a positive length");
+  if (!(r.voxel_size >= 1e-6 && r.voxel_size <= 1e6)) {
+    ByteReader::fail_at(in.offset() - 8, "voxel size " + shortest(r.voxel_size) + " m is not in [1e-6, 1e6]");
+  }
   const auto held = in.get<std::uint32_t>("held count");
   const auto dropped = in.get<std::uint32_t>("dropped count");
   const auto cleared = in.get<std::uint32_t>("cleared count");

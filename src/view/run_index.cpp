@@ -48,7 +48,7 @@ IndexRow parse_row(const std::string& line) {
   };
   const auto count = [&](std::size_t i) {
     const double value = number(i);
-    if (value < 0 || value != std::floor(value)) {
+    if (value < 0 || value != std::floor(value) || value > 4294967295.0) {
       throw std::invalid_argument("field " + std::string(kFields[i]) + " is \"" + cells[i] + "\", not a count");
     }
     return std::size_t(value);
@@ -64,20 +64,20 @@ IndexRow parse_row(const std::string& line) {
 }  // namespace
 
 Index read_index(const std::string& path) {
-  Index index;
   std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    index.error = std::string(kIndexFile) + ": cannot be opened";
-    return index;
-  }
+  if (!in) return Index{{}, std::string(kIndexFile) + ": cannot be opened"};
   std::stringstream whole;
   whole << in.rdbuf();
-  const std::string text = whole.str();
+  return parse_index(whole.str());
+}
+
+Index parse_index(std::string_view text) {
+  Index index;
   std::size_t line_number = 0;
   for (std::size_t at = 0; at < text.size();) {
     const std::size_t end = text.find('\n', at);
     if (end == std::string::npos) break;  // still being written
-    const std::string line = text.substr(at, end - at);
+    const std::string line(text.substr(at, end - at));
     at = end + 1;
     if (++line_number == 1) {
       if (line != kIndexHeader) {

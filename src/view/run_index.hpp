@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace eco::view {
@@ -38,5 +39,7 @@ struct Index {
 };
 /// The index at `path`. A last line without its newline is a row still being written: left out.
 [[nodiscard]] Index read_index(const std::string& path);
+/// The same of the file's text.
+[[nodiscard]] Index parse_index(std::string_view text);
 
 }  // namespace eco::view

@@ -104,6 +104,10 @@ TEST(FrameFile, RefusesDamage) {
   version[8] = 9;
   EXPECT_NE(refusal(version).find("f.bin: byte 8: version 9"), std::string::npos) << refusal(version);
   EXPECT_NE(refusal(good + "xxxx").find("bytes after the frame's last part"), std::string::npos);
+  std::string step = good;  // a quantum that would overflow a float
+  const double huge_step = 1e300;
+  std::memcpy(step.data() + 8 + 4 + 4 + 4 + 96, &huge_step, 8);
+  EXPECT_NE(refusal(step).find("f.bin: byte 116: quantum 1e+300 m is not in (0, 100]"), std::string::npos) << refusal(step);
   std::string counts = good;  // a held count far beyond the file
   const std::uint32_t huge = 1u << 30;
   std::memcpy(counts.data() + 8 + 4 + 4 + 4 + 96 + 16, &huge, 4);
