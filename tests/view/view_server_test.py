@@ -3,7 +3,8 @@ folder (raw, percent-encoded once and twice, absolute, through symlinks) get 404
 log; a missing folder, a folder without a recording and a port in use are refused with a message
 naming them; a corrupt and a truncated frame file are answered 422 with the file's name and the
 byte where it goes wrong; downloads dropped mid-transfer leave it serving. And an odometry's
-recording (eco odometry --record) serves its map with the reference path.
+recording (eco odometry --record) serves its map with the reference path, and eco odometry --view
+serves its frames as they come.
 
 usage: view_server_test.py ECO_CLI WORK_DIR"""
 
@@ -12,6 +13,7 @@ import os
 import socket
 import struct
 import sys
+import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "bench"))
 from eco_command import check, eco, start  # noqa: E402
@@ -121,6 +123,18 @@ status, body = server.get("/api/frame?n=2")
 check(status == 200 and json.loads(body[4:4 + struct.unpack_from("<I", body)[0]])["held"] == run["frames"]["held"][2],
       f"odometry frame 2: {status}")
 server.stop()
+
+# eco odometry --view: served while the maps run in their child processes, its frames appearing
+live = ViewServer([CLI, "odometry", "--frames", "6", "--view", "--port", "0",
+                   "--pace", "0.2", "--out", "odometry-live"], cwd=WORK)
+seen = []
+deadline = time.time() + 240
+while time.time() < deadline and (not seen or seen[-1] < 6):
+    seen.append(len(json.loads(live.get("/api/run")[1])["frames"]["frame"]))
+    time.sleep(0.1)
+check(seen and seen[-1] == 6 and len(set(seen)) > 2, f"frames served while eco odometry --view ran: {sorted(set(seen))}")
+check(live.alive(), "eco odometry --view did not go on serving after its last frame")
+live.stop()
 
 # the folder: missing, without a recording; the port: taken
 done = eco("view", "missing-run", ok=False)
