@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <cmath>
+#include <cstdint>
 
 namespace eco::view {
 namespace {

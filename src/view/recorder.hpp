@@ -14,7 +14,6 @@
 #include <Eigen/Geometry>
 
 #include <cstdio>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>

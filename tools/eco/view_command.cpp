@@ -2,6 +2,7 @@
 
 #include "commands.hpp"
 
+#include "view/run_index.hpp"
 #include "view/view_server.hpp"
 
 #include <cstdio>
@@ -27,7 +28,10 @@ Run add_view(CLI::App& app, const std::string&) {
       "  eco view results/odometry/eco --port 0           any free port; the address is printed");
   return [folder, options] {
     const view::ViewServer server(*folder, *options);
-    std::printf("viewer: %s serving %s (Ctrl-C ends it)\n", server.url().c_str(), folder->c_str());
+    const view::Index index = view::read_index(view::recording_folder(*folder) + "/" + view::kIndexFile);
+    std::printf("viewer: %s serving %s, %zu frames (Ctrl-C ends it)\n", server.url().c_str(), folder->c_str(),
+                index.rows.size());
+    if (!index.error.empty()) std::printf("viewer: %s\n", index.error.c_str());
     std::fflush(stdout);
     server.serve_forever();
     return 0;
