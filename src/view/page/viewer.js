@@ -75,7 +75,7 @@ function colorsFor(frame) {
   if (by === 'intensity' && frame.intensity) { hi = Math.max(1e-6, ...sample(frame.intensity)); value = (i) => frame.intensity[i]; }
   if (by === 'id' ? !frame.id : value === undefined) { lo = 0; hi = 1; value = () => 0.5; by = 'flat'; }  // not recorded
   $('scale').textContent = {
-    height: 'blue −2.5 m → white +3.5 m', age: `white new → blue ${hi} frames`, intensity: `blue 0 → white ${Number(hi).toPrecision(3)}`,
+    height: 'blue −2.5 m → white +3.5 m about the sensor', age: `white new → blue ${hi} frames old`, intensity: `blue 0 → white ${Number(hi).toPrecision(3)}`,
     id: 'a hue an id', flat: 'not recorded in this run' }[by];
   const rgb = new THREE.Color();
   for (let i = 0; i < n; ++i) {
