@@ -27,8 +27,8 @@ build: deps
 ## demo: the question a newcomer brings (should I use this instead of PCL's octree, a k-d tree, a
 ## voxel map?) on the simulator's default drive, written once to DEMO_DATA: the robot's case (raw
 ## scans, 2 points kept per 0.1 m) against PCL's octree, nanoflann and the scan pass; a LiDAR
-## odometry on each map (ECO's recorded for eco view); then the paper's Table II settings. Builds the
-## eco command alone; the results go under DEMO_OUT.
+## odometry on each map; then the paper's Table II settings. Builds the eco command alone; the
+## results go under DEMO_OUT.
 DEMO_DATA   ?= $(BUILD)/sim-default
 DEMO_FRAMES ?= 120
 DEMO_OUT    ?= $(BUILD)/demo
@@ -40,12 +40,12 @@ demo: deps
 	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --preset robot-cap-0.1 --methods eco,pcl_octree,nanoflann,scan_pass \
 	  --brief --out $(DEMO_OUT)/robot
 	@printf '\n== 2. A LiDAR odometry on each map: the same frames, the same registration ==\n'
-	$(BUILD)/bin/eco odometry --data $(DEMO_DATA) --map all --record --out $(DEMO_OUT)/odometry
+	$(BUILD)/bin/eco odometry --data $(DEMO_DATA) --map all --out $(DEMO_OUT)/odometry
 	@printf "\n== 3. The paper's Table II settings: ShiftInOnly, N_max = 8 ==\n"
 	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --preset paper --workload static --frames 30 --brief \
 	  --out $(DEMO_OUT)/paper-static
 	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --preset paper --workload dynamic --brief --out $(DEMO_OUT)/paper-dynamic
-	@printf '\nSee the odometry on ECO'"'"'s map, frame by frame, in a browser: $(BUILD)/bin/eco view $(DEMO_OUT)/odometry/eco\n'
+	@printf '\nTo watch a drive in a web browser as ECO takes it in: $(BUILD)/bin/eco run --frames 60 --view\n'
 
 ## test: every test (C++ and, through pytest, Python), in a release build; the C++ tests again
 ## under AddressSanitizer + UBSan; the concurrency tests under ThreadSanitizer; then each parser's
