@@ -33,6 +33,14 @@ Recorder::~Recorder() {
   if (index_) std::fclose(index_);
 }
 
+void Recorder::carry(std::uint32_t frame, const std::vector<HeldPoint>& held) {
+  for (const HeldPoint& p : held) {
+    BirthTable::Entry& b = births_.at(p.point, frame);
+    if (b.now < std::numeric_limits<std::uint16_t>::max()) ++b.now;
+  }
+  births_.end_frame([](const BirthTable::Entry&) {});
+}
+
 FrameChanges Recorder::record(std::uint32_t frame, const Eigen::Isometry3d& world_T_sensor,
                               const std::vector<HeldPoint>& held, const std::vector<VoxelKey>& voxels,
                               FrameFigures figures, const std::optional<Eigen::Vector3d>& reference) {

@@ -51,6 +51,10 @@ class Recorder {
                       const std::vector<VoxelKey>& voxels, FrameFigures figures,
                       const std::optional<Eigen::Vector3d>& reference = std::nullopt);
 
+  /// Takes `held` as what the map held after frame `frame`, without recording it: a run that goes
+  /// on from a saved map then shows its first frame's changes, not every loaded point as new.
+  void carry(std::uint32_t frame, const std::vector<HeldPoint>& held);
+
   [[nodiscard]] const std::string& folder() const { return folder_; }
 
  private:

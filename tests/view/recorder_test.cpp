@@ -118,6 +118,19 @@ TEST(Recorder, CountsItselfForAMapThatDoesNot) {
   EXPECT_EQ(*index.rows[1].reference, Eigen::Vector3d(5, 0, 0.1));
 }
 
+TEST(Recorder, GoesOnFromAMapItDidNotRecord) {
+  test::TempDir dir;
+  Recorder recorder(dir.path().string(), {"loaded", 20.0, 1.0});
+  const std::vector<HeldPoint> loaded{{{1, 0, 0}, {}}, {{2, 0, 0}, {}}};
+  recorder.carry(49, loaded);
+  std::vector<HeldPoint> next = loaded;
+  next.push_back({{3, 0, 0}, {}});
+  const FrameChanges c = recorder.record(50, Eigen::Isometry3d::Identity(), next, {}, {});
+  EXPECT_EQ(c.inserted, 1u);
+  EXPECT_EQ(read_frame_file((dir / frame_file_name(50)).string()).age, (std::vector<std::uint16_t>{1, 1, 0}));
+  EXPECT_FALSE(std::filesystem::exists(dir / frame_file_name(49)));
+}
+
 TEST(BirthTable, KeepsWhatAMapWouldThroughGrowthAndDeletions) {
   // against std::map over 40 frames of random positions on a coarse grid (so that many repeat),
   // each frame keeping a random half of the last one's and adding new ones

@@ -150,6 +150,7 @@ int run(const RunOptions& o, const ViewFlags& viewing, const std::string& comman
               "held", "nodes", "depth", "B/pt", "update ms", "trail");
   view::RunInfo shown{o.data.empty() ? "simulated drive" : o.data, config.box_side, o.voxel, total};
   LiveView live(viewing, o.out, (std::filesystem::path(o.out) / "view").string(), shown);
+  if (live.recorder() && first > 0) live.recorder()->carry(std::uint32_t(first - 1), tree.points_with_attributes());
   std::unique_ptr<TrailReport> trails;
   double update_ms = 0.0;
   for (std::size_t t = first; t < total; ++t) {
