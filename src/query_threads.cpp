@@ -3,6 +3,19 @@
 #include <stdexcept>
 
 namespace eco {
+namespace {
+
+/// Runs `work`; what it throws, if anything, comes back rather than leaving the thread.
+std::exception_ptr run_catching(const std::function<void()>& work) {
+  try {
+    work();
+  } catch (...) {
+    return std::current_exception();
+  }
+  return nullptr;
+}
+
+}  // namespace
 
 QueryThreads::QueryThreads(unsigned threads) {
   if (threads == 0) throw std::invalid_argument("eco::QueryThreads: threads = 0 must be >= 1");
@@ -28,12 +41,7 @@ void QueryThreads::run(const std::function<void()>& work) {
     ++batches_;
   }
   wake_.notify_all();
-  std::exception_ptr mine;
-  try {
-    work();
-  } catch (...) {
-    mine = std::current_exception();
-  }
+  const std::exception_ptr mine = run_catching(work);
   std::unique_lock lock(mutex_);
   done_.wait(lock, [&] { return busy_ == 0; });
   work_ = nullptr;
@@ -50,12 +58,7 @@ void QueryThreads::serve() {
     served = batches_;
     const std::function<void()>& work = *work_;
     lock.unlock();
-    std::exception_ptr failed;
-    try {
-      work();
-    } catch (...) {
-      failed = std::current_exception();
-    }
+    const std::exception_ptr failed = run_catching(work);
     lock.lock();
     if (failed && !failure_) failure_ = failed;
     if (--busy_ == 0) done_.notify_one();

@@ -2,6 +2,7 @@
 
 #include "view/frame_file.hpp"
 
+#include "odometry/voxel_downsample.hpp"
 #include "persist/byte_stream.hpp"
 #include "persist/checksum.hpp"
 
@@ -35,8 +36,7 @@ std::string shortest(double value) {
 
 /// The sensor's voxel: voxel keys are stored as int16 offsets from it.
 VoxelKey sensor_voxel(const Eigen::Isometry3d& pose, double voxel_size) {
-  const Eigen::Vector3d k = (pose.translation() / voxel_size).array().floor();
-  return {std::int64_t(k.x()), std::int64_t(k.y()), std::int64_t(k.z())};
+  return odometry::voxel_of(pose.translation(), voxel_size);
 }
 
 std::int16_t voxel_offset(std::int64_t key, std::int64_t centre) {

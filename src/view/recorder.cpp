@@ -3,6 +3,8 @@
 
 #include "view/recorder.hpp"
 
+#include "odometry/voxel_downsample.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -89,10 +91,7 @@ FrameChanges Recorder::record(std::uint32_t frame, const Eigen::Isometry3d& worl
 
 std::vector<VoxelKey> occupied_voxels(const std::vector<HeldPoint>& held, double voxel_size) {
   std::unordered_set<VoxelKey> voxels;
-  for (const HeldPoint& p : held) {
-    const Eigen::Vector3d k = (p.point / voxel_size).array().floor();
-    voxels.insert({std::int64_t(k.x()), std::int64_t(k.y()), std::int64_t(k.z())});
-  }
+  for (const HeldPoint& p : held) voxels.insert(odometry::voxel_of(p.point, voxel_size));
   return {voxels.begin(), voxels.end()};
 }
 
