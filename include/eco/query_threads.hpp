@@ -6,14 +6,14 @@
 ///
 ///   eco::QueryThreads threads(2);                    // the calling thread and one helper
 ///   map.knn(queries, 5, out, found, threads);        // every iteration, no thread started
+///
+/// A process forked from the one that made them (Python's multiprocessing, a server's workers)
+/// has none of the helpers, only their memory, whose locks may have been held at the fork: its
+/// first batch starts helpers of its own and leaves the parent's untouched.
 
-#include <condition_variable>
-#include <cstdint>
-#include <exception>
+#include <atomic>
 #include <functional>
-#include <mutex>
-#include <thread>
-#include <vector>
+#include <memory>
 
 namespace eco {
 
@@ -22,13 +22,13 @@ class QueryThreads {
   /// `threads` >= 1, the calling thread counted: threads - 1 helpers are started. Throws
   /// std::invalid_argument for 0.
   explicit QueryThreads(unsigned threads);
-  /// Stops and joins the helpers.
+  /// Stops and joins the helpers (this process's: a forked copy leaves the parent's alone).
   ~QueryThreads();
   QueryThreads(const QueryThreads&) = delete;
   QueryThreads& operator=(const QueryThreads&) = delete;
 
   /// The calling thread and the helpers.
-  [[nodiscard]] unsigned size() const { return unsigned(helpers_.size()) + 1; }
+  [[nodiscard]] unsigned size() const { return threads_; }
 
   /// Calls work() on the calling thread and on every helper at once, and returns when each has
   /// returned; rethrows the first exception one threw. Batches from several threads run one
@@ -36,17 +36,11 @@ class QueryThreads {
   void run(const std::function<void()>& work);
 
  private:
-  void serve();
+  struct Crew;  // the helpers and what they share, in the process that started them
+  Crew& crew();
 
-  std::vector<std::thread> helpers_;
-  std::mutex batch_;  // one batch at a time
-  std::mutex mutex_;  // what follows
-  std::condition_variable wake_, done_;
-  const std::function<void()>* work_ = nullptr;
-  std::uint64_t batches_ = 0;
-  unsigned busy_ = 0;  // helpers still in the batch
-  bool stopping_ = false;
-  std::exception_ptr failure_;
+  unsigned threads_;
+  std::atomic<Crew*> crew_;
 };
 
 }  // namespace eco

@@ -1,5 +1,6 @@
 #include "bench/odometry_run.hpp"
 
+#include "bench/fork_alone.hpp"
 #include "bench/trajectory_plot.hpp"
 
 #include <eco/io/error.hpp>
@@ -90,12 +91,11 @@ class FrameSlots {
 /// What `work` puts in its slots (room for `frames`), done in a child process: each map's run
 /// starts from the same heap and leaves none of its own to the next, so that the page faults of
 /// the odometry's own work are the map's doing alone. Throws std::runtime_error with the child's
-/// message when it failed.
+/// message when it failed, std::logic_error when this process runs other threads (fork_alone).
 std::vector<odometry::FrameReport> in_child_process(std::size_t frames, const std::function<void(FrameSlots&)>& work) {
   FrameSlots slots(frames);
   std::fflush(nullptr);
-  const pid_t child = fork();
-  if (child < 0) throw std::runtime_error("odometry: fork failed");
+  const pid_t child = fork_alone();
   if (child == 0) {
     int status = 0;
     try {
@@ -166,6 +166,12 @@ OdometryFigures figures_of(const OdometryRun& run) {
   return f;
 }
 
+bool map_is_exact(const std::string& map, const odometry::OdometryConfig& config) {
+  odometry::MapSettings alone = config.map_settings();
+  alone.threads = 1;  // no helper started: the caller forks next
+  return odometry::make_any_local_map(map, alone)->exact();
+}
+
 std::vector<OdometryRun> run_odometry(const workloads::Workload& scans, std::size_t frames,
                                       const std::vector<std::string>& maps, const odometry::OdometryConfig& config,
                                       std::span<const Eigen::Isometry3d> reference, const FrameObserver& observe) {
@@ -174,7 +180,7 @@ std::vector<OdometryRun> run_odometry(const workloads::Workload& scans, std::siz
   for (const std::string& map : maps) {
     OdometryRun run;
     run.map = map;
-    run.exact = odometry::make_any_local_map(map, config.map_settings())->exact();
+    run.exact = map_is_exact(map, config);
     run.frames = in_child_process(frames, [&](FrameSlots& slots) {
       odometry::Odometry odo(config, odometry::make_any_local_map(map, config.map_settings()));
       if (!reference.empty()) odo.set_start(reference.front());

@@ -41,9 +41,13 @@ struct OdometryFigures {
 /// accuracy (summary.md has every figure).
 [[nodiscard]] std::string brief_odometry_table(const std::vector<OdometryRun>& runs);
 
+/// Whether `map`'s queries are exact; throws std::invalid_argument for an unknown name. Made
+/// without helper threads, so that the caller may still fork.
+[[nodiscard]] bool map_is_exact(const std::string& map, const odometry::OdometryConfig& config);
+
 /// Runs the odometry under `config` with each of `maps` on frames [0, frames) of `scans`, one map
 /// after the other, each in a process of its own (forked: one map's heap does not shape the
-/// next's page faults). With `reference` (one pose per frame) each run starts at its first pose
+/// next's page faults), so the caller must run no other thread (fork_alone.hpp). With `reference` (one pose per frame) each run starts at its first pose
 /// and is scored against it. `observe` is shown each frame once registered (in the child).
 using FrameObserver = std::function<void(const std::string& map, const odometry::Odometry&, const odometry::FrameReport&)>;
 [[nodiscard]] std::vector<OdometryRun> run_odometry(const workloads::Workload& scans, std::size_t frames,

@@ -86,7 +86,7 @@ int run(OdometryOptions o, const ViewFlags& viewing, const std::string& command_
   reference.resize(std::min(reference.size(), frames));
   const std::vector<std::string> maps =
       o.map == "all" ? odometry::all_local_map_names() : std::vector<std::string>{o.map};
-  for (const std::string& m : maps) (void)odometry::make_any_local_map(m, o.config.map_settings());  // names checked first
+  for (const std::string& m : maps) (void)bench::map_is_exact(m, o.config);  // names checked first
 
   write_options_file(o.out, "odometry", command_line, options_json(o), nullptr);
   std::printf("odometry on %s, %zu frames, map%s %s\n%s\n", source.c_str(), frames, maps.size() > 1 ? "s" : "",

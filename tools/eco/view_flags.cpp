@@ -23,7 +23,7 @@ LiveView::LiveView(const ViewFlags& flags, const std::string& run_folder, const 
   if (!flags.recording()) return;
   recorder_ = std::make_unique<view::Recorder>(folder, info);
   if (!flags.view) return;
-  server_ = std::make_unique<view::ViewServer>(run_folder, flags.server);
+  server_ = std::make_unique<ServerProcess>(run_folder, flags.server);
   std::printf("viewer: %s (live; Ctrl-C ends it)\n", server_->url().c_str());
   std::fflush(stdout);
 }
@@ -34,11 +34,11 @@ void LiveView::pace() {
   last_ = std::chrono::steady_clock::now();
 }
 
-void LiveView::linger() const {
+void LiveView::linger() {
   if (!server_) return;
   std::printf("viewer: the run is done; still serving %s until Ctrl-C\n", server_->url().c_str());
   std::fflush(stdout);
-  server_->serve_forever();
+  server_->wait();
 }
 
 }  // namespace eco::cli

@@ -2,8 +2,9 @@
 // --record and --view, shared by `eco run` and `eco odometry`: what the viewer needs, written per
 // frame into <out>/view, and, with --view, served while the run computes.
 
+#include "server_process.hpp"
+
 #include "view/recorder.hpp"
-#include "view/view_server.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -23,7 +24,8 @@ struct ViewFlags {
   [[nodiscard]] bool recording() const { return record || view; }
 };
 
-/// The recording of a run and, with --view, its server: made before the first frame.
+/// The recording of a run and, with --view, its server (in a process of its own): made before the
+/// first frame.
 class LiveView {
  public:
   /// Records into `folder` when the flags ask for it (else does nothing), and serves `run_folder`.
@@ -32,13 +34,13 @@ class LiveView {
   [[nodiscard]] view::Recorder* recorder() { return recorder_.get(); }
   /// Waits out the rest of --pace since the last call.
   void pace();
-  /// With --view: says so and serves until the process is ended.
-  void linger() const;
+  /// With --view: says so and serves until Ctrl-C.
+  void linger();
 
  private:
   const ViewFlags& flags_;
   std::unique_ptr<view::Recorder> recorder_;
-  std::unique_ptr<view::ViewServer> server_;
+  std::unique_ptr<ServerProcess> server_;
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
