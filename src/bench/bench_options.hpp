@@ -3,6 +3,7 @@
 // what it measures, and the tree configuration every method gets.
 
 #include <eco/config.hpp>
+#include <eco/workloads/scan_source.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -16,7 +17,8 @@ namespace eco::bench {
 enum class WorkloadKind { Static, Dynamic };
 
 struct BenchOptions {
-  std::optional<std::filesystem::path> data;  ///< KITTI-layout folder; none: the simulator's default drive
+  std::optional<std::filesystem::path> data;  ///< what open_source() reads; none: the simulator's default drive
+  workloads::SourceOptions source;            ///< how (--poses, --topic, --time-field, --time-unit)
   WorkloadKind workload = WorkloadKind::Static;
   std::vector<std::string> methods{"eco",       "eco_exact",  "octree_base", "ioctree_global", "ioctree_target",
                                    "nanoflann", "pcl_octree", "scan_pass"};

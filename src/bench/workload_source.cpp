@@ -2,8 +2,7 @@
 
 #include "bench/sim_workload.hpp"
 
-#include <eco/io/kitti_sequence.hpp>
-#include <eco/workloads/dynamic_workload.hpp>
+#include <eco/io/error.hpp>
 #include <eco/workloads/static_map.hpp>
 #include <eco/workloads/static_workload.hpp>
 
@@ -13,7 +12,13 @@ OpenedWorkload open_workload(const BenchOptions& options, const std::function<vo
   OpenedWorkload out;
   std::unique_ptr<workloads::Workload> scans;
   if (options.data) {
-    scans = std::make_unique<workloads::DynamicWorkload>(io::KittiSequence(*options.data));
+    workloads::OpenedSource opened = workloads::open_source(*options.data, options.source);
+    if (!opened.has_poses) {
+      throw io::Error(options.data->string(), "", "has no poses, and the benchmark places each scan by its pose: give "
+                                                  "--poses FILE, or estimate them with eco odometry");
+    }
+    for (const std::string& warning : opened.warnings) status("warning: " + warning);
+    scans = std::move(opened.frames);
     out.source = options.data->string();
   } else {
     sim::SimConfig sim;

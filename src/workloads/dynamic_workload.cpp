@@ -9,7 +9,7 @@ WorkloadFrame DynamicWorkload::frame(std::size_t index) const {
   const std::span<const double> times = sequence_.times();
   const double time = index < times.size() ? times[index] : double(index) / 10.0;
   return {index, scan.world_T_lidar, std::move(scan.cloud.points), std::move(labels),
-          std::move(scan.cloud.intensity), time};
+          std::move(scan.cloud.intensity), time, {}};
 }
 
 }  // namespace eco::workloads

@@ -2,6 +2,7 @@
 // prints the summary tables.
 
 #include "commands.hpp"
+#include "source_flags.hpp"
 #include "config_options.hpp"
 #include "options_file.hpp"
 
@@ -19,11 +20,9 @@ namespace eco::cli {
 
 Run add_bench(CLI::App& app, const std::string& command_line) {
   auto o = std::make_shared<bench::BenchOptions>();
-  auto data = std::make_shared<std::string>();
   auto preset = std::make_shared<std::string>("robot");  // the library's defaults, on raw scans
   CLI::App* cmd = app.add_subcommand("bench", "Compare ECO with its baselines on one stream (the paper's Table II)");
-  cmd->add_option("--data", *data, "KITTI-layout folder (velodyne/, poses.txt[, calib.txt]); default: simulate")
-      ->check(CLI::ExistingDirectory);
+  auto data = std::make_shared<SourceFlags>(*cmd, "the simulator's drive");
   auto workload = std::make_shared<std::string>(bench::to_string(o->workload));
   cmd->add_option("--workload", *workload, "static (aggregated map) or dynamic (raw scans)")
       ->check(CLI::IsMember({"static", "dynamic"}, CLI::ignore_case))
@@ -79,7 +78,10 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
     // the lattice (and PCL's leaves) at the voxel size every method is asked at, unless given
     if (cmd->count("--voxel_size") == 0) o->config.voxel_size = o->voxel_resolution;
     flags->apply(o->config);
-    if (!data->empty()) o->data = *data;
+    if (!data->data.empty()) {
+      o->data = data->data;
+      o->source = data->resolved();
+    }
     std::printf("preset %s: %s, %s workload, voxel map at %g m\n", preset->c_str(), describe_settings(o->config).c_str(),
                 bench::to_string(o->workload).c_str(), o->voxel_resolution);
     std::fflush(stdout);  // the settings before the progress (on stderr), also into a pipe

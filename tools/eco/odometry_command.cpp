@@ -4,14 +4,13 @@
 
 #include "commands.hpp"
 #include "options_file.hpp"
+#include "source_flags.hpp"
 #include "view_flags.hpp"
 
 #include "bench/odometry_run.hpp"
 #include "bench/sim_workload.hpp"
 
-#include <eco/io/kitti_sequence.hpp>
 #include <eco/odometry/baseline_maps.hpp>
-#include <eco/workloads/dynamic_workload.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -22,7 +21,6 @@ namespace eco::cli {
 namespace {
 
 struct OdometryOptions {
-  std::string data;
   std::string out = "results/odometry";
   std::size_t frames = 0;
   std::uint64_t seed = 1;
@@ -30,13 +28,13 @@ struct OdometryOptions {
   odometry::OdometryConfig config;
 };
 
-nlohmann::json options_json(const OdometryOptions& o) {
+nlohmann::json options_json(const OdometryOptions& o, const SourceFlags& source) {
   const odometry::OdometryConfig& c = o.config;
   nlohmann::json out{{"frames", o.frames}, {"seed", o.seed}, {"map", o.map}, {"max-range", c.max_range},
                      {"min-range", c.min_range}, {"voxel-size", c.voxel_size},
                      {"max-points-per-voxel", c.max_points_per_voxel}, {"box-side", c.box_side},
                      {"neighbours", c.neighbours}, {"max-iterations", c.max_iterations}, {"threads", c.threads}};
-  if (!o.data.empty()) out["data"] = std::filesystem::weakly_canonical(o.data).string();
+  source.add_to(out);
   return out;
 }
 
@@ -59,13 +57,13 @@ void record_frame(view::Recorder& recorder, const odometry::Odometry& odo, const
                   {f.scan_points, 0, 0, 0, f.map_points, f.update_ms}, reference);
 }
 
-int run(OdometryOptions o, const ViewFlags& viewing, const std::string& command_line) {
+int run(OdometryOptions o, const SourceFlags& data, const ViewFlags& viewing, const std::string& command_line) {
   o.config.validate();
   std::unique_ptr<workloads::Workload> scans;
   std::vector<Eigen::Isometry3d> reference;
   bench::PoseOutput pose_output;
   std::string source;
-  if (o.data.empty()) {
+  if (data.data.empty()) {
     sim::SimConfig sim;
     sim.seed = o.seed;
     sim.frames = o.frames > 0 ? o.frames : 300;
@@ -73,14 +71,15 @@ int run(OdometryOptions o, const ViewFlags& viewing, const std::string& command_
     for (std::size_t t = 0; t < sim.frames; ++t) reference.push_back(scans->pose(t));
     source = "the simulated drive (seed " + std::to_string(o.seed) + ")";
   } else {
-    io::KittiOptions read;
-    read.require_poses = false;  // a folder of scans alone runs, without accuracy figures
-    io::KittiSequence sequence(o.data, read);
-    if (sequence.has_poses()) reference.assign(sequence.poses().begin(), sequence.poses().end());
-    pose_output.velo_to_cam = sequence.velo_to_cam();
-    scans = std::make_unique<workloads::DynamicWorkload>(std::move(sequence));
-    source = std::filesystem::path(o.data).filename().string();
-    if (source.empty()) source = o.data;
+    workloads::OpenedSource opened = data.open();
+    std::printf("%s\n", opened.description.c_str());
+    scans = std::move(opened.frames);
+    if (opened.has_poses) {
+      for (std::size_t t = 0; t < scans->size(); ++t) reference.push_back(scans->pose(t));
+    }
+    pose_output.velo_to_cam = opened.velo_to_cam;
+    source = std::filesystem::path(data.data).filename().string();
+    if (source.empty()) source = data.data;
   }
   const std::size_t frames = o.frames > 0 ? std::min(o.frames, scans->size()) : scans->size();
   reference.resize(std::min(reference.size(), frames));
@@ -88,10 +87,10 @@ int run(OdometryOptions o, const ViewFlags& viewing, const std::string& command_
       o.map == "all" ? odometry::all_local_map_names() : std::vector<std::string>{o.map};
   for (const std::string& m : maps) (void)bench::map_is_exact(m, o.config);  // names checked first
 
-  write_options_file(o.out, "odometry", command_line, options_json(o), nullptr);
+  write_options_file(o.out, "odometry", command_line, options_json(o, data), nullptr);
   std::printf("odometry on %s, %zu frames, map%s %s\n%s\n", source.c_str(), frames, maps.size() > 1 ? "s" : "",
               o.map.c_str(), describe(o.config).c_str());
-  if (reference.empty()) std::printf("no poses.txt: the run gives no accuracy figures\n");
+  if (reference.empty()) std::printf("no reference poses: the run gives no accuracy figures\n");
   std::fflush(stdout);  // the settings before the progress (on stderr), also into a pipe
   // the first map's run is recorded (in its child process) and, with --view, served from here
   const std::filesystem::path shown_folder = std::filesystem::path(o.out) / maps.front();
@@ -125,7 +124,7 @@ Run add_odometry(CLI::App& app, const std::string& command_line) {
   auto o = std::make_shared<OdometryOptions>();
   odometry::OdometryConfig& c = o->config;
   CLI::App* cmd = app.add_subcommand("odometry", "A LiDAR odometry on ECO's map (or another), against reference poses");
-  cmd->add_option("--data", o->data, "KITTI-layout folder; default: a simulated drive")->check(CLI::ExistingDirectory);
+  auto data = std::make_shared<SourceFlags>(*cmd, "a simulated drive");
   cmd->add_option("--frames", o->frames, "frames to run (0 = all; 300 for the simulator)")->capture_default_str();
   cmd->add_option("--out", o->out, "folder for the results")->capture_default_str();
   cmd->add_option("--seed", o->seed, "the simulator's seed without --data")->capture_default_str();
@@ -156,9 +155,9 @@ Run add_odometry(CLI::App& app, const std::string& command_line) {
       "  eco odometry --data ../shared/data/kitti_mini_00 --map all --out results/odometry00\n"
       "  eco odometry --data ../shared/data/balm2_realworld_f20-99 --max-range 40 --voxel-size 0.4\n"
       "  eco odometry --frames 200 --view                   watch the first map's run in a browser as it goes");
-  return [o, file, viewing, command_line] {
+  return [o, data, file, viewing, command_line] {
     file->load();
-    return run(*o, *viewing, command_line);
+    return run(*o, *data, *viewing, command_line);
   };
 }
 

@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "config_options.hpp"
 #include "options_file.hpp"
+#include "source_flags.hpp"
 #include "view_flags.hpp"
 
 #include "bench/sim_workload.hpp"
@@ -11,9 +12,7 @@
 #include "bench/trails.hpp"
 
 #include <eco/eco.hpp>
-#include <eco/io/kitti_sequence.hpp>
 #include <eco/io/ply.hpp>
-#include <eco/workloads/dynamic_workload.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -24,7 +23,6 @@ namespace eco::cli {
 namespace {
 
 struct RunOptions {
-  std::string data;
   std::string out = "results/run";
   std::size_t frames = 0;
   std::size_t export_every = 0;
@@ -116,39 +114,51 @@ class TrailReport {
 };
 
 /// The options of a run keyed by `eco run`'s flags (without --out and --config).
-nlohmann::json run_options_json(const RunOptions& o) {
+nlohmann::json run_options_json(const RunOptions& o, const SourceFlags& source) {
   nlohmann::json out{{"frames", o.frames}, {"export-every", o.export_every}, {"voxel", o.voxel}, {"seed", o.seed},
                      {"save-every", o.save_every}};
   // paths resolved, so that --config works from anywhere
-  if (!o.data.empty()) out["data"] = std::filesystem::weakly_canonical(o.data).string();
+  source.add_to(out);
   if (!o.save.empty()) out["save"] = std::filesystem::weakly_canonical(o.save).string();
   if (!o.load.empty()) out["load"] = std::filesystem::weakly_canonical(o.load).string();
   return out;
 }
 
-int run(const RunOptions& o, const ViewFlags& viewing, const std::string& command_line) {
+/// The frames of --data, which must carry poses: ECO places each scan by its pose.
+std::unique_ptr<workloads::Workload> posed_frames(const SourceFlags& source) {
+  workloads::OpenedSource opened = source.open();
+  std::printf("%s\n", opened.description.c_str());
+  if (!opened.has_poses) {
+    throw std::invalid_argument(source.data + " has no poses, and eco run places each scan by its pose: give --poses FILE "
+                                "(KITTI or TUM), or let eco odometry --data " + source.data + " estimate them");
+  }
+  return std::move(opened.frames);
+}
+
+int run(const RunOptions& o, const SourceFlags& source, const ViewFlags& viewing, const std::string& command_line) {
   std::unique_ptr<workloads::Workload> scans;
-  if (o.data.empty()) {
+  const std::string& data = source.data;
+  if (data.empty()) {
     sim::SimConfig sim;
     sim.seed = o.seed;
     sim.frames = o.frames > 0 ? o.frames : 100;
     scans = std::make_unique<bench::SimWorkload>(sim);
   } else {
-    scans = std::make_unique<workloads::DynamicWorkload>(io::KittiSequence(o.data));
+    scans = posed_frames(source);
   }
   // a loaded map goes on from the frame after its last, under its own configuration
   EgoOctree tree = o.load.empty() ? EgoOctree(o.config) : EgoOctree::load(o.load);
   const Config& config = tree.config();
   // a loaded map brings its own configuration: the file names the map, not the fields
-  write_options_file(o.out, "run", command_line, run_options_json(o), o.load.empty() ? &config : nullptr);
+  write_options_file(o.out, "run", command_line, run_options_json(o, source), o.load.empty() ? &config : nullptr);
   const std::size_t total = o.frames > 0 ? std::min(o.frames, scans->size()) : scans->size();
   const std::size_t first = tree.frame_count();
-  std::printf("%s, %zu frames; %s\n", o.data.empty() ? "simulated drive" : o.data.c_str(), total,
+  std::printf("%s, %zu frames; %s\n", data.empty() ? "simulated drive" : data.c_str(), total,
               describe_settings(config).c_str());
   if (!o.load.empty()) std::printf("loaded %s: %zu points after frame %zu\n", o.load.c_str(), tree.size(), first - 1);
   std::printf("%6s %8s %8s %8s %8s %9s %8s %6s %6s %9s %7s\n", "frame", "scan", "inserted", "pruned", "cleared",
               "held", "nodes", "depth", "B/pt", "update ms", "trail");
-  view::RunInfo shown{o.data.empty() ? "simulated drive" : o.data, config.box_side, o.voxel, total};
+  view::RunInfo shown{data.empty() ? "simulated drive" : data, config.box_side, o.voxel, total};
   LiveView live(viewing, o.out, (std::filesystem::path(o.out) / "view").string(), shown);
   if (live.recorder() && first > 0) live.recorder()->carry(std::uint32_t(first - 1), tree.points_with_attributes());
   std::unique_ptr<TrailReport> trails;
@@ -195,7 +205,7 @@ int run(const RunOptions& o, const ViewFlags& viewing, const std::string& comman
 Run add_run(CLI::App& app, const std::string& command_line) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Stream a sequence's scans through ECO, printing per-frame figures");
-  cmd->add_option("--data", o->data, "KITTI-layout folder; default: a simulated drive")->check(CLI::ExistingDirectory);
+  auto source = std::make_shared<SourceFlags>(*cmd, "a simulated drive");
   cmd->add_option("--frames", o->frames, "frames to run (0 = all; 100 for the simulator)")->capture_default_str();
   cmd->add_option("--export-every", o->export_every, "write held points and voxel map as PLY every K frames (0 = never)")
       ->capture_default_str();
@@ -224,13 +234,13 @@ Run add_run(CLI::App& app, const std::string& command_line) {
       "  eco run --frames 50 --save results/run/map.eco && eco run --frames 100 --load results/run/map.eco\n"
       "                                                  the same drive in two runs: frames 0-49, then 50-99\n"
       "  eco run --frames 60 --view                        watch it in a browser as it runs (eco view: afterwards)");
-  return [o, flags, file, viewing, command_line] {
+  return [o, source, flags, file, viewing, command_line] {
     file->load();
     if (!o->load.empty() && !flags->given().empty()) {
       throw std::invalid_argument("--load goes on under the saved map's own configuration; drop " + flags->given());
     }
     flags->apply(o->config);
-    return run(*o, *viewing, command_line);
+    return run(*o, *source, *viewing, command_line);
   };
 }
 

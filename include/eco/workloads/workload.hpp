@@ -24,6 +24,7 @@ struct WorkloadFrame {
   std::vector<std::uint32_t> labels;    ///< SemanticKITTI label per point; empty when the source has none
   std::vector<float> intensities;       ///< intensity per point; empty when the source has none
   double time = 0.0;  ///< [s] when the frame was taken: the source's time, else index / 10 Hz
+  std::vector<double> point_times;  ///< [s] after `time`, one per point, when the source times its points
 };
 
 /// A frame's points as a scan with per-point attributes, for a tree that keeps them: ids

@@ -1,0 +1,46 @@
+#pragma once
+/// @file scan_source.hpp
+/// What `--data PATH` names, opened as a stream of frames, chosen by what the path holds:
+///
+///   a KITTI-layout folder        velodyne/*.bin, poses.txt (or --poses), calib.txt, times.txt
+///   a rosbag2 folder             metadata.yaml beside .db3 or .mcap files (io::Recording)
+///   an .mcap or .db3 file        (io::Recording)
+///   a folder of point clouds     .pcd, .ply, .bin files in name order, poses from --poses
+///
+///   eco::workloads::OpenedSource in = eco::workloads::open_source("run.mcap", {});
+///   for (std::size_t i = 0; i < in.frames->size(); ++i) {
+///     const eco::workloads::WorkloadFrame f = in.frames->frame(i);   // pose (if any), points, times
+///   }
+
+#include <eco/io/recording.hpp>
+#include <eco/workloads/workload.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace eco::workloads {
+
+struct SourceOptions {
+  /// A trajectory (KITTI or TUM, io/pose_file.hpp): KITTI's, one pose per scan or cloud in order;
+  /// TUM's on a recording, interpolated at each cloud's stamp (clouds outside its span skipped).
+  /// For a KITTI folder it replaces the folder's poses.txt.
+  std::string poses;
+  io::RecordingOptions recording;  ///< --topic, --time-field, --time-unit
+};
+
+struct OpenedSource {
+  std::unique_ptr<Workload> frames;
+  bool has_poses = false;  ///< false: every frame's pose is the identity (an odometry estimates them)
+  std::optional<Eigen::Isometry3d> velo_to_cam;  ///< KITTI's camera-frame poses were turned into the LiDAR's
+  std::string description;                        ///< one line: what was opened, and how it is read
+  std::vector<std::string> warnings;              ///< what the user should know (a cut file, a guess)
+};
+
+/// Opens `path`. Throws eco::io::Error naming the path and what it holds when it is none of the
+/// above, or naming the file, byte or topic at fault.
+[[nodiscard]] OpenedSource open_source(const std::filesystem::path& path, const SourceOptions& options);
+
+}  // namespace eco::workloads

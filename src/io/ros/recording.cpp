@@ -1,0 +1,137 @@
+#include <eco/io/recording.hpp>
+
+#include "io/ros/mcap_store.hpp"
+#include "io/ros/sqlite_store.hpp"
+
+#include <eco/io/error.hpp>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace eco::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool is_cloud_type(const std::string& type) {
+  return type == "sensor_msgs/msg/PointCloud2" || type == "sensor_msgs/PointCloud2";
+}
+
+/// The files of a rosbag2 folder (its .mcap or .db3 files, in name order: split parts in turn).
+std::vector<fs::path> bag_files(const fs::path& folder) {
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    const std::string ext = entry.path().extension().string();
+    if (entry.is_regular_file() && (ext == ".mcap" || ext == ".db3")) files.push_back(entry.path());
+  }
+  std::ranges::sort(files);
+  if (files.empty()) throw Error(folder.string(), "", "has metadata.yaml but no .mcap or .db3 file");
+  return files;
+}
+
+std::unique_ptr<detail::MessageStore> open_store(const fs::path& file) {
+  if (file.extension() == ".db3") return std::make_unique<detail::SqliteStore>(file);
+  return std::make_unique<detail::McapStore>(file);
+}
+
+}  // namespace
+
+std::string list_topics(const std::vector<RecordedTopic>& topics) {
+  std::string text;
+  for (const RecordedTopic& t : topics) {
+    char line[512];
+    std::snprintf(line, sizeof line, "  %-30s %-32s %zu messages\n", t.name.c_str(), t.type.c_str(), t.messages);
+    text += line;
+  }
+  return text.empty() ? "  (no topics)\n" : text;
+}
+
+bool Recording::is_recording(const fs::path& path) {
+  const std::string ext = path.extension().string();
+  if (fs::is_directory(path)) return fs::is_regular_file(path / "metadata.yaml");
+  return ext == ".mcap" || ext == ".db3";
+}
+
+Recording::Recording(const fs::path& path, const RecordingOptions& options) : name_(path.string()), decoder_(options.time) {
+  std::vector<fs::path> files;
+  if (fs::is_directory(path)) {
+    if (!fs::is_regular_file(path / "metadata.yaml")) throw Error(name_, "", "is not a rosbag2 folder (no metadata.yaml)");
+    files = bag_files(path);
+    kind_ = "rosbag2 folder, " + std::to_string(files.size()) + " file" + (files.size() > 1 ? "s" : "");
+  } else {
+    if (!fs::exists(path)) throw Error(name_, "", "no such file or folder");
+    files = {path};
+    kind_ = path.extension() == ".db3" ? "rosbag2 SQLite" : "MCAP";
+  }
+  for (const fs::path& file : files) {
+    parts_.push_back(open_store(file));
+    for (const detail::TopicInfo& t : parts_.back()->topics()) {
+      const auto same = std::ranges::find(topics_, t.name, &RecordedTopic::name);
+      if (same != topics_.end()) {
+        same->messages += t.messages;
+      } else {
+        topics_.push_back({t.name, t.type, t.messages});
+      }
+    }
+    if (damage_.empty()) damage_ = parts_.back()->damage();
+  }
+
+  if (options.topic.empty()) {
+    std::vector<const RecordedTopic*> clouds;
+    for (const RecordedTopic& t : topics_) {
+      if (is_cloud_type(t.type)) clouds.push_back(&t);
+    }
+    if (clouds.size() != 1) {
+      throw Error(name_, "", (clouds.empty() ? std::string("has no sensor_msgs/PointCloud2 topic")
+                                             : std::string("has several PointCloud2 topics: pick one with --topic")) +
+                                 "; its topics:\n" + list_topics(topics_));
+    }
+    topic_ = clouds.front()->name;
+  } else {
+    const auto it = std::ranges::find(topics_, options.topic, &RecordedTopic::name);
+    if (it == topics_.end()) throw Error(name_, "", "has no topic " + options.topic + "; its topics:\n" + list_topics(topics_));
+    if (!is_cloud_type(it->type)) {
+      throw Error(name_, "", "topic " + options.topic + " holds " + it->type + ", not sensor_msgs/PointCloud2");
+    }
+    topic_ = options.topic;
+  }
+  for (std::size_t p = 0; p < parts_.size(); ++p) {
+    for (detail::StoredMessage m : parts_[p]->index(topic_)) {
+      m.part = std::uint32_t(p);
+      clouds_.push_back(m);
+    }
+  }
+  std::ranges::stable_sort(clouds_, {}, &detail::StoredMessage::log_time_ns);
+  for (const auto& part : parts_) encodings_.push_back(int(part->encoding(topic_)));
+}
+
+Recording::~Recording() = default;
+Recording::Recording(Recording&&) noexcept = default;
+Recording& Recording::operator=(Recording&&) noexcept = default;
+
+std::size_t Recording::size() const { return clouds_.size(); }
+
+std::int64_t Recording::log_time_ns(std::size_t index) const { return clouds_.at(index).log_time_ns; }
+
+PointCloud2 Recording::parsed(std::size_t index, const std::string& source) {
+  const detail::StoredMessage& where = clouds_.at(index);
+  const std::span<const std::uint8_t> bytes = parts_[where.part]->read(where);
+  return detail::Encoding(encodings_[where.part]) == detail::Encoding::Cdr ? parse_cdr_point_cloud2(bytes, source)
+                                                                           : parse_ros1_point_cloud2(bytes, source);
+}
+
+RecordedScan Recording::read(std::size_t index) {
+  const std::string source = name_ + ", " + topic_ + " message " + std::to_string(index);
+  const PointCloud2 cloud = parsed(index, source);
+  return {index, cloud.stamp_ns, cloud.frame_id, decoder_.decode(cloud, source)};
+}
+
+std::int64_t Recording::stamp_ns(std::size_t index) {
+  return parsed(index, name_ + ", " + topic_ + " message " + std::to_string(index)).stamp_ns;
+}
+
+std::string Recording::describe() const {
+  return name_ + " (" + kind_ + "), topic " + topic_ + ": " + std::to_string(clouds_.size()) + " clouds";
+}
+
+}  // namespace eco::io

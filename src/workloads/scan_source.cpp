@@ -1,0 +1,79 @@
+#include <eco/workloads/scan_source.hpp>
+
+#include "cloud_folder_workload.hpp"
+#include "recording_workload.hpp"
+
+#include <eco/io/error.hpp>
+#include <eco/io/kitti_sequence.hpp>
+#include <eco/io/pose_file.hpp>
+#include <eco/workloads/dynamic_workload.hpp>
+
+namespace eco::workloads {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::optional<io::PoseTrack> track_of(const SourceOptions& options) {
+  if (options.poses.empty()) return std::nullopt;
+  return io::read_pose_file(options.poses);
+}
+
+OpenedSource open_kitti(const fs::path& folder, const SourceOptions& options) {
+  io::KittiOptions read;
+  read.require_poses = false;  // scans alone run: an odometry estimates their poses
+  if (!options.poses.empty()) {
+    read.poses_file = fs::absolute(options.poses).string();
+    if (!fs::is_regular_file(read.poses_file)) throw io::Error(options.poses, "", "no such poses file");
+  }
+  io::KittiSequence sequence(folder, read);
+  OpenedSource out;
+  out.has_poses = sequence.has_poses();
+  out.velo_to_cam = sequence.velo_to_cam();
+  out.description = folder.string() + " (KITTI layout): " + std::to_string(sequence.size()) + " scans";
+  if (out.has_poses && !out.velo_to_cam) {
+    out.warnings.push_back("the poses are taken as the LiDAR's: there is no calib.txt beside them (KITTI's own poses are "
+                           "camera 0's: put the sequence's calib.txt in " + folder.string() + ")");
+  }
+  out.frames = std::make_unique<DynamicWorkload>(std::move(sequence));
+  return out;
+}
+
+OpenedSource open_recording(const fs::path& path, const SourceOptions& options) {
+  io::Recording recording(path, options.recording);
+  std::optional<io::PoseTrack> track = track_of(options);
+  OpenedSource out;
+  out.has_poses = track.has_value();
+  if (recording.size() > 0) (void)recording.read(0);  // the first cloud fixes how its points are read
+  out.description = recording.describe() + (recording.layout() ? "; " + recording.layout()->describe() : "");
+  if (!recording.damage().empty()) out.warnings.push_back(recording.damage());
+  auto frames = std::make_unique<RecordingWorkload>(std::move(recording), std::move(track));
+  if (frames->outside_poses() > 0) {
+    out.warnings.push_back(std::to_string(frames->outside_poses()) + " clouds lie outside the span of " + options.poses +
+                           " and are left out");
+  }
+  out.frames = std::move(frames);
+  return out;
+}
+
+}  // namespace
+
+OpenedSource open_source(const fs::path& path, const SourceOptions& options) {
+  if (!fs::exists(path)) throw io::Error(path.string(), "", "no such file or folder");
+  if (io::Recording::is_recording(path)) return open_recording(path, options);
+  if (fs::is_directory(path / "velodyne")) return open_kitti(path, options);
+  if (CloudFolderWorkload::holds_clouds(path)) {
+    OpenedSource out;
+    auto frames = std::make_unique<CloudFolderWorkload>(path, track_of(options));
+    out.has_poses = !options.poses.empty();
+    out.description = path.string() + " (point-cloud files): " + std::to_string(frames->size()) + " scans in name order";
+    out.frames = std::move(frames);
+    return out;
+  }
+  if (path.extension() == ".bag") {
+    throw io::Error(path.string(), "", "is a ROS 1 bag, which eco does not read yet: convert it to MCAP (mcap convert)");
+  }
+  throw io::Error(path.string(), "", "is none of what --data reads: a KITTI-layout folder (velodyne/), a folder of .pcd, "
+                                     ".ply or .bin files, an .mcap or .db3 file, or a rosbag2 folder (metadata.yaml)");
+}
+
+}  // namespace eco::workloads

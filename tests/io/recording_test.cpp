@@ -1,0 +1,221 @@
+// Recordings written by other people's code (foxglove's MCAP and CDR writers, SQLite in rosbag2's
+// schema: tests/io/recordings/) read back cloud by cloud, each point, intensity and time against
+// what the writer put in; drivers' layouts found by name, type and value; damage refused or, for a
+// file cut short, read up to the cut and named.
+
+#include <eco/io/error.hpp>
+#include <eco/io/recording.hpp>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <functional>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace eco::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path recordings() {
+  const char* dir = std::getenv("ECO_RECORDINGS");
+  return dir ? fs::path(dir) : fs::path();
+}
+
+const nlohmann::json& expected() {
+  static const nlohmann::json json = nlohmann::json::parse(std::ifstream(recordings() / "expected.json"));
+  return json;
+}
+
+class RecordingTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (recordings().empty() || !fs::exists(recordings() / "expected.json")) {
+      GTEST_FAIL() << "ECO_RECORDINGS names no folder of test recordings (write_recordings.sh writes them)";
+    }
+  }
+};
+
+/// Every cloud of `topic` in `path` as the writer described it, in order.
+void expect_clouds(const fs::path& path, const std::string& topic, const nlohmann::json& clouds, Recording& bag) {
+  SCOPED_TRACE(path.string() + " " + topic);
+  ASSERT_EQ(bag.topic(), topic);
+  ASSERT_EQ(bag.size(), clouds.size());
+  for (std::size_t i = 0; i < bag.size(); ++i) {
+    const RecordedScan scan = bag.read(i);
+    const nlohmann::json& want = clouds[i];
+    EXPECT_EQ(std::to_string(scan.stamp_ns), want["stamp_ns"].get<std::string>());
+    EXPECT_EQ(scan.frame_id, "lidar");
+    ASSERT_EQ(scan.cloud.points.size(), want["points"].size()) << "cloud " << i;
+    for (std::size_t p = 0; p < scan.cloud.points.size(); ++p) {
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(scan.cloud.points[p][c], float(want["points"][p][c].get<double>())) << i << "/" << p;
+    }
+    ASSERT_EQ(scan.cloud.intensities.size(), want["intensities"].size());
+    for (std::size_t p = 0; p < scan.cloud.intensities.size(); ++p) {
+      ASSERT_EQ(scan.cloud.intensities[p], float(want["intensities"][p].get<double>())) << i << "/" << p;
+    }
+    ASSERT_EQ(scan.cloud.times.size(), want["times"].size());
+    for (std::size_t p = 0; p < scan.cloud.times.size(); ++p) {
+      ASSERT_EQ(scan.cloud.times[p], want["times"][p].get<double>()) << i << "/" << p;
+    }
+    // the writer left out every 50th point (not finite) and every 61st (at the origin)
+    EXPECT_GT(scan.cloud.skipped_not_finite, 0u);
+    EXPECT_GT(scan.cloud.skipped_zero, 0u);
+  }
+}
+
+TEST_F(RecordingTest, EveryFileAndTopicAsWritten) {
+  std::size_t topics = 0;
+  for (const auto& [file, by_topic] : expected().items()) {
+    for (const auto& [topic, content] : by_topic.items()) {
+      const fs::path path = recordings() / file;
+      Recording bag(path, {topic, {}});
+      expect_clouds(path, topic, content["clouds"], bag);
+      ++topics;
+    }
+  }
+  EXPECT_GE(topics, 12u);
+}
+
+TEST_F(RecordingTest, ASplitRosbag2FolderReadsAsOne) {
+  Recording bag(recordings() / "ouster_bag", {});
+  expect_clouds(recordings() / "ouster_bag", "/ouster/points", expected()["ouster.db3"]["/ouster/points"]["clouds"], bag);
+  EXPECT_NE(bag.describe().find("rosbag2 folder, 2 files"), std::string::npos) << bag.describe();
+}
+
+TEST_F(RecordingTest, DriversTimeLayoutsAreFound) {
+  struct Case {
+    const char* file;
+    const char* field;
+    TimeUnit unit;
+    bool absolute;
+    const char* intensity;
+  };
+  for (const Case& c : {Case{"ouster_zstd.mcap", "t", TimeUnit::Nanoseconds, false, "intensity"},
+                        Case{"velodyne.mcap", "time", TimeUnit::Seconds, false, "intensity"},
+                        Case{"hesai.mcap", "timestamp", TimeUnit::Seconds, true, "intensity"},
+                        Case{"robosense.mcap", "timestamp", TimeUnit::Seconds, true, "intensity"},
+                        Case{"livox.mcap", "offset_time", TimeUnit::Nanoseconds, false, "reflectivity"},
+                        Case{"plain.mcap", "", TimeUnit::Auto, false, ""}}) {
+    Recording bag(recordings() / c.file, {});
+    (void)bag.read(0);
+    ASSERT_TRUE(bag.layout()) << c.file;
+    EXPECT_EQ(bag.layout()->time_field, c.field) << c.file;
+    EXPECT_EQ(bag.layout()->intensity_field, c.intensity) << c.file;
+    if (*c.field) {
+      EXPECT_EQ(bag.layout()->time_unit, c.unit) << c.file;
+      EXPECT_EQ(bag.layout()->absolute_times, c.absolute) << c.file;
+    }
+  }
+}
+
+TEST_F(RecordingTest, TheTimeFieldAndUnitCanBeForced) {
+  // velodyne's ring (uint16) taken as a time in microseconds
+  Recording bag(recordings() / "velodyne.mcap", {"", {"ring", TimeUnit::Microseconds}});
+  const RecordedScan scan = bag.read(0);
+  EXPECT_EQ(bag.layout()->time_field, "ring");
+  ASSERT_FALSE(scan.cloud.times.empty());
+  for (double t : scan.cloud.times) EXPECT_LT(t, 32e-6);
+  try {
+    Recording missing(recordings() / "velodyne.mcap", {"", {"stamp_us", TimeUnit::Auto}});
+    (void)missing.read(0);
+    FAIL() << "a missing time field was taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("has no time field stamp_us"), std::string::npos) << e.what();
+  }
+}
+
+std::string error_of(const fs::path& path, const std::string& topic = "") {
+  try {
+    Recording bag(path, {topic, {}});
+    for (std::size_t i = 0; i < bag.size(); ++i) (void)bag.read(i);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST_F(RecordingTest, TopicsAreListedWhenTheChoiceIsOpenOrWrong) {
+  const std::string several = error_of(recordings() / "two_lidars.mcap");
+  EXPECT_NE(several.find("several PointCloud2 topics: pick one with --topic"), std::string::npos) << several;
+  for (const char* line : {"/front/points", "/rear/points", "/odom", "geometry_msgs/msg/Point", "3 messages", "4 messages"}) {
+    EXPECT_NE(several.find(line), std::string::npos) << line << " in " << several;
+  }
+  const std::string missing = error_of(recordings() / "two_lidars.mcap", "/points");
+  EXPECT_NE(missing.find("has no topic /points; its topics:"), std::string::npos) << missing;
+  const std::string wrong = error_of(recordings() / "two_lidars.mcap", "/odom");
+  EXPECT_NE(wrong.find("holds geometry_msgs/msg/Point, not sensor_msgs/PointCloud2"), std::string::npos) << wrong;
+  EXPECT_NE(error_of(recordings() / "no_clouds.mcap").find("has no sensor_msgs/PointCloud2 topic"), std::string::npos);
+  EXPECT_NE(error_of(recordings() / "empty.mcap").find("(no topics)"), std::string::npos);
+  Recording rear(recordings() / "two_lidars.mcap", {"/rear/points", {}});
+  EXPECT_EQ(rear.size(), 2u);
+}
+
+/// `source` copied to `name` in a scratch folder, then changed by `edit`.
+fs::path damaged_copy(const std::string& source, const std::string& name, const std::function<void(std::string&)>& edit) {
+  std::ifstream in(recordings() / source, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  edit(bytes);
+  const fs::path out = fs::temp_directory_path() / ("eco-recording-test-" + std::to_string(getpid())) / name;
+  fs::create_directories(out.parent_path());
+  std::ofstream(out, std::ios::binary) << bytes;
+  return out;
+}
+
+TEST_F(RecordingTest, ACutFileIsReadUpToTheCutAndSaysWhere) {
+  const std::uintmax_t size = fs::file_size(recordings() / "ouster_none.mcap");
+  const nlohmann::json& clouds = expected()["ouster_none.mcap"]["/ouster/points"]["clouds"];
+  std::size_t whole_seen = 0;
+  for (std::uintmax_t cut = 40; cut < size; cut += size / 37) {
+    const fs::path path = damaged_copy("ouster_none.mcap", "cut.mcap", [&](std::string& b) { b.resize(std::size_t(cut)); });
+    try {
+      Recording bag(path, {"/ouster/points", {}});
+      EXPECT_NE(bag.damage().find("the file ends"), std::string::npos) << cut;
+      EXPECT_NE(bag.damage().find("cut.mcap: byte "), std::string::npos) << bag.damage();
+      ASSERT_LE(bag.size(), clouds.size());
+      for (std::size_t i = 0; i < bag.size(); ++i) {
+        const RecordedScan scan = bag.read(i);
+        ASSERT_EQ(scan.cloud.points.size(), clouds[i]["points"].size()) << "cut at " << cut;
+      }
+      whole_seen = std::max(whole_seen, bag.size());
+    } catch (const Error& e) {  // cut inside the first chunk, which defines the topic
+      EXPECT_NE(std::string(e.what()).find("(no topics)"), std::string::npos) << "cut at " << cut << ": " << e.what();
+    }
+  }
+  EXPECT_GE(whole_seen, 4u);
+  // cut before the first record: nothing to read, and said
+  const fs::path head = damaged_copy("ouster_none.mcap", "head.mcap", [](std::string& b) { b.resize(8); });
+  EXPECT_NE(error_of(head).find("(no topics)"), std::string::npos);
+}
+
+TEST_F(RecordingTest, DamageIsRefusedNamingTheFileAndByte) {
+  const std::string not_mcap = error_of(damaged_copy("ouster_none.mcap", "not.mcap", [](std::string& b) { b[1] = 'X'; }));
+  EXPECT_NE(not_mcap.find("not.mcap: byte 0: not an MCAP file"), std::string::npos) << not_mcap;
+
+  // a byte of a cloud flipped inside an uncompressed chunk: its CRC-32 no longer matches
+  const std::string crc = error_of(damaged_copy("ouster_none.mcap", "crc.mcap", [](std::string& b) { b[b.size() / 3] ^= 0x10; }));
+  EXPECT_NE(crc.find("crc.mcap: byte "), std::string::npos) << crc;
+  EXPECT_NE(crc.find("CRC-32"), std::string::npos) << crc;
+
+  const std::string compression = error_of(damaged_copy("ouster_zstd.mcap", "brotli.mcap", [](std::string& b) {
+    for (std::size_t at = b.find("zstd"); at != std::string::npos; at = b.find("zstd", at)) b.replace(at, 4, "brot");
+  }));
+  EXPECT_NE(compression.find("compression 'brot' is not one of lz4, zstd or none"), std::string::npos) << compression;
+
+  const std::string lz4 = error_of(damaged_copy("ouster_lz4.mcap", "lz4.mcap", [](std::string& b) {
+    for (std::size_t at = b.size() / 4; at < b.size() / 4 + 64; ++at) b[at] = char(0xff);
+  }));
+  EXPECT_NE(lz4.find("lz4.mcap: byte "), std::string::npos) << lz4;
+
+  EXPECT_NE(error_of(recordings() / "missing.mcap").find("missing.mcap"), std::string::npos);
+  const std::string not_db3 = error_of(damaged_copy("ouster_none.mcap", "not.db3", [](std::string&) {}));
+  EXPECT_NE(not_db3.find("not.db3"), std::string::npos) << not_db3;
+}
+
+}  // namespace
+}  // namespace eco::io

@@ -1,0 +1,65 @@
+// Writes a KITTI-layout folder's scans (velodyne/*.bin: x y z reflectance, float32) as one MCAP
+// file of sensor_msgs/PointCloud2 on /points (zstd chunks), with foxglove's writers: the same
+// frames as a robot's recording, for comparing the two through `eco run`.
+//
+// usage: node kitti_to_mcap.mjs KITTI_DIR OUT.mcap
+
+import { McapWriter } from "@mcap/core";
+import { parse } from "@foxglove/rosmsg";
+import { MessageWriter } from "@foxglove/rosmsg2-serialization";
+import * as zstd from "@foxglove/wasm-zstd";
+import { open } from "node:fs/promises";
+import { readdirSync, readFileSync } from "node:fs";
+
+const [dir, out] = process.argv.slice(2);
+await zstd.isLoaded;
+const definition = `std_msgs/Header header
+uint32 height
+uint32 width
+sensor_msgs/PointField[] fields
+bool is_bigendian
+uint32 point_step
+uint32 row_step
+uint8[] data
+bool is_dense
+================================================================================
+MSG: std_msgs/Header
+builtin_interfaces/Time stamp
+string frame_id
+================================================================================
+MSG: builtin_interfaces/Time
+int32 sec
+uint32 nanosec
+================================================================================
+MSG: sensor_msgs/PointField
+string name
+uint32 offset
+uint8 datatype
+uint32 count`;
+const writer = new MessageWriter(parse(definition, { ros2: true }));
+const handle = await open(out, "w");
+let size = 0n;
+const mcap = new McapWriter({
+  writable: { write: async (b) => { await handle.write(b); size += BigInt(b.byteLength); }, position: () => size },
+  compressChunk: (data) => ({ compression: "zstd", compressedData: zstd.compress(data, 3) }),
+});
+await mcap.start({ profile: "ros2", library: "eco-tests kitti_to_mcap" });
+const schema = await mcap.registerSchema({ name: "sensor_msgs/msg/PointCloud2", encoding: "ros2msg",
+                                           data: new TextEncoder().encode(definition) });
+const channel = await mcap.registerChannel({ topic: "/points", schemaId: schema, messageEncoding: "cdr", metadata: new Map() });
+const scans = readdirSync(`${dir}/velodyne`).filter((f) => f.endsWith(".bin")).sort();
+for (const [k, file] of scans.entries()) {
+  const bytes = readFileSync(`${dir}/velodyne/${file}`);
+  const data = new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  const stamp = BigInt(k) * 100000000n;
+  const message = {
+    header: { stamp: { sec: Number(stamp / 1000000000n), nanosec: Number(stamp % 1000000000n) }, frame_id: "velodyne" },
+    height: 1, width: data.length / 16,
+    fields: [["x", 0], ["y", 4], ["z", 8], ["intensity", 12]].map(([name, offset]) => ({ name, offset, datatype: 7, count: 1 })),
+    is_bigendian: false, point_step: 16, row_step: data.length, data, is_dense: true,
+  };
+  await mcap.addMessage({ channelId: channel, sequence: k, logTime: stamp, publishTime: stamp, data: writer.writeMessage(message) });
+}
+await mcap.end();
+await handle.close();
+console.log(`wrote ${scans.length} clouds to ${out}`);

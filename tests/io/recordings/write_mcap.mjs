@@ -1,0 +1,240 @@
+// Writes the MCAP files ECO's recording readers are tested on, with foxglove's MCAP writer and
+// ROS 2 CDR serialiser (not ECO's code): PointCloud2 as Ouster, Velodyne, Hesai, Robosense and
+// Livox drivers lay them out, uncompressed, lz4 and zstd chunks, and files for the errors. Beside
+// them, expected.json: what each cloud must decode to, computed here from the same numbers.
+//
+// usage: node write_mcap.mjs OUT_DIR
+
+import { McapWriter } from "@mcap/core";
+import { parse } from "@foxglove/rosmsg";
+import { MessageWriter } from "@foxglove/rosmsg2-serialization";
+import * as zstd from "@foxglove/wasm-zstd";
+import lz4 from "lz4js";
+import { open } from "node:fs/promises";
+import { writeFileSync, mkdirSync } from "node:fs";
+
+const OUT = process.argv[2];
+mkdirSync(OUT, { recursive: true });
+await zstd.isLoaded;
+
+const POINT_CLOUD2 = `
+std_msgs/Header header
+uint32 height
+uint32 width
+sensor_msgs/PointField[] fields
+bool is_bigendian
+uint32 point_step
+uint32 row_step
+uint8[] data
+bool is_dense
+================================================================================
+MSG: std_msgs/Header
+builtin_interfaces/Time stamp
+string frame_id
+================================================================================
+MSG: builtin_interfaces/Time
+int32 sec
+uint32 nanosec
+================================================================================
+MSG: sensor_msgs/PointField
+uint8 INT8=1
+uint8 UINT8=2
+uint8 INT16=3
+uint16 UINT16=4
+uint8 INT32=5
+uint8 UINT32=6
+uint8 FLOAT32=7
+uint8 FLOAT64=8
+string name
+uint32 offset
+uint8 datatype
+uint32 count`;
+const ODOMETRY_SCHEMA = `geometry_msgs/Point position
+================================================================================
+MSG: geometry_msgs/Point
+float64 x
+float64 y
+float64 z`;
+const cloudWriter = new MessageWriter(parse(POINT_CLOUD2, { ros2: true }));
+const pointWriter = new MessageWriter(parse(ODOMETRY_SCHEMA, { ros2: true }));
+
+const T = { INT8: 1, UINT8: 2, INT16: 3, UINT16: 4, INT32: 5, UINT32: 6, FLOAT32: 7, FLOAT64: 8 };
+const SIZE = { 1: 1, 2: 1, 3: 2, 4: 2, 5: 4, 6: 4, 7: 4, 8: 8 };
+const STAMP0 = 1700000000; // s
+const PERIOD_NS = 100000000;
+
+// drivers' layouts: fields (name, type, offset), point_step, and how a point's time is written
+const LAYOUTS = {
+  ouster: {
+    fields: [["x", T.FLOAT32, 0], ["y", T.FLOAT32, 4], ["z", T.FLOAT32, 8], ["intensity", T.FLOAT32, 16],
+             ["t", T.UINT32, 20], ["reflectivity", T.UINT16, 24], ["ring", T.UINT16, 26]],
+    step: 48, time: "t", unit: "ns", absolute: false, intensity: "intensity",
+  },
+  velodyne: {  // time at an odd offset: fields need not be aligned
+    fields: [["x", T.FLOAT32, 0], ["y", T.FLOAT32, 4], ["z", T.FLOAT32, 8], ["intensity", T.FLOAT32, 12],
+             ["ring", T.UINT16, 16], ["time", T.FLOAT32, 18]],
+    step: 22, time: "time", unit: "s", absolute: false, intensity: "intensity",
+  },
+  hesai: {
+    fields: [["x", T.FLOAT32, 0], ["y", T.FLOAT32, 4], ["z", T.FLOAT32, 8], ["intensity", T.FLOAT32, 12],
+             ["timestamp", T.FLOAT64, 16], ["ring", T.UINT16, 24]],
+    step: 26, time: "timestamp", unit: "s", absolute: true, intensity: "intensity",
+  },
+  robosense: {  // coordinates as float64
+    fields: [["x", T.FLOAT64, 0], ["y", T.FLOAT64, 8], ["z", T.FLOAT64, 16], ["intensity", T.UINT8, 24],
+             ["ring", T.UINT16, 25], ["timestamp", T.FLOAT64, 27]],
+    step: 35, time: "timestamp", unit: "s", absolute: true, intensity: "intensity",
+  },
+  livox: {
+    fields: [["x", T.FLOAT32, 0], ["y", T.FLOAT32, 4], ["z", T.FLOAT32, 8], ["reflectivity", T.UINT8, 12],
+             ["tag", T.UINT8, 13], ["line", T.UINT8, 14], ["offset_time", T.UINT32, 15]],
+    step: 19, time: "offset_time", unit: "ns", absolute: false, intensity: "reflectivity",
+  },
+  plain: {  // no time, no intensity
+    fields: [["x", T.FLOAT32, 0], ["y", T.FLOAT32, 4], ["z", T.FLOAT32, 8]],
+    step: 12, time: null, intensity: null,
+  },
+};
+
+function put(view, type, offset, value) {
+  switch (type) {
+    case T.INT8: return view.setInt8(offset, value);
+    case T.UINT8: return view.setUint8(offset, value);
+    case T.INT16: return view.setInt16(offset, value, true);
+    case T.UINT16: return view.setUint16(offset, value, true);
+    case T.INT32: return view.setInt32(offset, value, true);
+    case T.UINT32: return view.setUint32(offset, value, true);
+    case T.FLOAT32: return view.setFloat32(offset, value, true);
+    case T.FLOAT64: return view.setFloat64(offset, value, true);
+  }
+}
+
+function get(view, type, offset) {
+  switch (type) {
+    case T.INT8: return view.getInt8(offset);
+    case T.UINT8: return view.getUint8(offset);
+    case T.INT16: return view.getInt16(offset, true);
+    case T.UINT16: return view.getUint16(offset, true);
+    case T.INT32: return view.getInt32(offset, true);
+    case T.UINT32: return view.getUint32(offset, true);
+    case T.FLOAT32: return view.getFloat32(offset, true);
+    case T.FLOAT64: return view.getFloat64(offset, true);
+  }
+}
+
+// cloud k of a layout: `points` points (height rows), some not finite, some at the origin; its
+// message and what ECO must decode of it (points in order, intensities, times after the stamp)
+function cloud(layoutName, k, points, height = 1) {
+  const layout = LAYOUTS[layoutName];
+  const width = points / height;
+  const data = new Uint8Array(points * layout.step);
+  const view = new DataView(data.buffer);
+  const field = Object.fromEntries(layout.fields.map(([name, type, offset]) => [name, { type, offset }]));
+  const stampNs = BigInt(STAMP0) * 1000000000n + BigInt(k * PERIOD_NS);
+  const expected = { stamp_ns: stampNs.toString(), points: [], intensities: [], times: [] };
+  for (let i = 0; i < points; i++) {
+    const at = i * layout.step;
+    let xyz = [5 + 0.01 * i + k, ((i * 7) % 13) - 6 + 0.001 * k, (i % 5) * 0.3 - 0.6];
+    if (i % 50 === 7) xyz = [NaN, 1, 2];
+    if (i % 61 === 3) xyz = [0, 0, 0];
+    ["x", "y", "z"].forEach((c, j) => put(view, field[c].type, at + field[c].offset, xyz[j]));
+    for (const [name, type, offset] of layout.fields) {
+      if (!["x", "y", "z"].includes(name)) put(view, type, at + offset, name === "ring" ? i % 32 : (i * 3) % 200);
+    }
+    const offsetS = (0.1 * i) / points;
+    if (layout.time) {
+      const f = field[layout.time];
+      const value = layout.unit === "ns" ? Math.round(offsetS * 1e9) : layout.absolute ? STAMP0 + k * 0.1 + offsetS : offsetS;
+      put(view, f.type, at + f.offset, value);
+    }
+    if (!xyz.every(Number.isFinite) || xyz.every((v) => v === 0)) continue;
+    expected.points.push(["x", "y", "z"].map((c) => get(view, field[c].type, at + field[c].offset)));
+    if (layout.intensity) expected.intensities.push(get(view, field[layout.intensity].type, at + field[layout.intensity].offset));
+    if (layout.time) {
+      const raw = get(view, field[layout.time].type, at + field[layout.time].offset);
+      expected.times.push(layout.unit === "ns" ? raw * 1e-9 : layout.absolute ? raw - Number(stampNs) * 1e-9 : raw);
+    }
+  }
+  const message = {
+    header: { stamp: { sec: Number(stampNs / 1000000000n), nanosec: Number(stampNs % 1000000000n) }, frame_id: "lidar" },
+    height, width,
+    fields: layout.fields.map(([name, datatype, offset]) => ({ name, offset, datatype, count: 1 })),
+    is_bigendian: false, point_step: layout.step, row_step: layout.step * width, data, is_dense: false,
+  };
+  return { bytes: cloudWriter.writeMessage(message), message, expected, stampNs };
+}
+
+class FileWritable {
+  constructor(handle) { this.handle = handle; this.size = 0n; }
+  async write(buffer) { await this.handle.write(buffer); this.size += BigInt(buffer.byteLength); }
+  position() { return this.size; }
+}
+
+const COMPRESSORS = {
+  none: undefined,
+  lz4: (data) => ({ compression: "lz4", compressedData: lz4.compress(data) }),
+  zstd: (data) => ({ compression: "zstd", compressedData: zstd.compress(data, 3) }),
+};
+
+// topics: [{ topic, layout, clouds, points, height }] and extra topics; returns the expected clouds
+async function writeMcap(name, { topics, compression = "zstd", chunked = true, chunkSize = 64 * 1024, extra = [] }) {
+  const handle = await open(`${OUT}/${name}`, "w");
+  const writer = new McapWriter({ writable: new FileWritable(handle), useChunks: chunked, chunkSize,
+                                  compressChunk: COMPRESSORS[compression] });
+  await writer.start({ profile: "ros2", library: "eco-tests" });
+  const cloudSchema = await writer.registerSchema({ name: "sensor_msgs/msg/PointCloud2", encoding: "ros2msg",
+                                                     data: new TextEncoder().encode(POINT_CLOUD2) });
+  const expected = {};
+  const messages = [];
+  for (const t of topics) {
+    const channel = await writer.registerChannel({ topic: t.topic, schemaId: cloudSchema, messageEncoding: "cdr", metadata: new Map() });
+    expected[t.topic] = { layout: t.layout, clouds: [] };
+    for (let k = 0; k < t.clouds; k++) {
+      const c = cloud(t.layout, k, t.points, t.height ?? 1);
+      expected[t.topic].clouds.push(c.expected);
+      messages.push({ channelId: channel, sequence: k, logTime: c.stampNs + 1000n, publishTime: c.stampNs, data: c.bytes });
+    }
+  }
+  for (const e of extra) {
+    const schema = await writer.registerSchema({ name: e.type, encoding: "ros2msg", data: new TextEncoder().encode(ODOMETRY_SCHEMA) });
+    const channel = await writer.registerChannel({ topic: e.topic, schemaId: schema, messageEncoding: "cdr", metadata: new Map() });
+    for (let k = 0; k < e.count; k++) {
+      messages.push({ channelId: channel, sequence: k, logTime: BigInt(STAMP0) * 1000000000n + BigInt(k * PERIOD_NS) + 500n,
+                      publishTime: 0n, data: pointWriter.writeMessage({ position: { x: k, y: 0, z: 0 } }) });
+    }
+  }
+  messages.sort((a, b) => (a.logTime < b.logTime ? -1 : a.logTime > b.logTime ? 1 : 0));
+  for (const m of messages) await writer.addMessage(m);
+  await writer.end();
+  await handle.close();
+  return expected;
+}
+
+const expected = {};
+for (const compression of ["none", "lz4", "zstd"]) {
+  expected[`ouster_${compression}.mcap`] = await writeMcap(`ouster_${compression}.mcap`,
+    { compression, topics: [{ topic: "/ouster/points", layout: "ouster", clouds: 5, points: 1024, height: 16 }] });
+}
+for (const layout of ["velodyne", "hesai", "robosense", "livox", "plain"]) {
+  expected[`${layout}.mcap`] = await writeMcap(`${layout}.mcap`, { topics: [{ topic: `/${layout}/points`, layout, clouds: 4, points: 600 }] });
+}
+expected["unchunked.mcap"] = await writeMcap("unchunked.mcap", { chunked: false,
+  topics: [{ topic: "/points", layout: "velodyne", clouds: 3, points: 300 }] });
+expected["two_lidars.mcap"] = await writeMcap("two_lidars.mcap", {
+  topics: [{ topic: "/front/points", layout: "ouster", clouds: 3, points: 256 },
+           { topic: "/rear/points", layout: "livox", clouds: 2, points: 256 }],
+  extra: [{ topic: "/odom", type: "geometry_msgs/msg/Point", count: 4 }] });
+expected["no_clouds.mcap"] = await writeMcap("no_clouds.mcap", { topics: [],
+  extra: [{ topic: "/odom", type: "geometry_msgs/msg/Point", count: 3 }] });
+expected["empty.mcap"] = await writeMcap("empty.mcap", { topics: [] });
+
+// the raw CDR messages of one topic, for the rosbag2 SQLite file write_db3.py makes
+const db3 = [];
+for (let k = 0; k < 4; k++) {
+  const c = cloud("ouster", k, 512, 8);
+  db3.push({ timestamp: (c.stampNs + 1000n).toString(), data: Buffer.from(c.bytes).toString("base64") });
+}
+expected["ouster.db3"] = { "/ouster/points": { layout: "ouster", clouds: [0, 1, 2, 3].map((k) => cloud("ouster", k, 512, 8).expected) } };
+writeFileSync(`${OUT}/expected.json`, JSON.stringify(expected));
+writeFileSync(`${OUT}/db3_messages.json`, JSON.stringify({ topic: "/ouster/points", type: "sensor_msgs/msg/PointCloud2", messages: db3 }));
+console.log(`wrote ${Object.keys(expected).length} recordings into ${OUT}`);

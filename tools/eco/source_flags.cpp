@@ -1,0 +1,46 @@
+#include "source_flags.hpp"
+
+#include <eco/io/error.hpp>
+
+#include <cstdio>
+#include <filesystem>
+
+namespace eco::cli {
+
+SourceFlags::SourceFlags(CLI::App& cmd, const std::string& without_data) {
+  cmd.add_option("--data", data,
+                 "a KITTI-layout folder, a folder of .pcd/.ply/.bin files, an .mcap or .db3 file or a rosbag2 folder; "
+                 "default: " + without_data);
+  cmd.add_option("--poses", options.poses,
+                 "poses from this file (KITTI: 12 numbers a line, a scan a line; TUM: t x y z qx qy qz qw, at the "
+                 "clouds' stamps) instead of the data's own");
+  cmd.add_option("--topic", options.recording.topic, "the recording's PointCloud2 topic (default: the only one)");
+  cmd.add_option("--time-field", options.recording.time.field,
+                 "the point field holding each point's time (default: the first of t, time, timestamp, timestamps, "
+                 "offset_time, stamps)");
+  cmd.add_option("--time-unit", time_unit, "its unit: s, ms, us, ns, or auto (integers ns, floats s)")
+      ->check(CLI::IsMember({"auto", "s", "ms", "us", "ns"}))
+      ->capture_default_str();
+}
+
+workloads::SourceOptions SourceFlags::resolved() const {
+  workloads::SourceOptions read = options;
+  read.recording.time.unit = *io::time_unit_named(time_unit);
+  return read;
+}
+
+workloads::OpenedSource SourceFlags::open() const {
+  workloads::OpenedSource source = workloads::open_source(data, resolved());
+  for (const std::string& warning : source.warnings) std::fprintf(stderr, "eco: warning: %s\n", warning.c_str());
+  return source;
+}
+
+void SourceFlags::add_to(nlohmann::json& out) const {
+  if (!data.empty()) out["data"] = std::filesystem::weakly_canonical(data).string();
+  if (!options.poses.empty()) out["poses"] = std::filesystem::weakly_canonical(options.poses).string();
+  if (!options.recording.topic.empty()) out["topic"] = options.recording.topic;
+  if (!options.recording.time.field.empty()) out["time-field"] = options.recording.time.field;
+  if (time_unit != "auto") out["time-unit"] = time_unit;
+}
+
+}  // namespace eco::cli
