@@ -8,7 +8,9 @@
 #include <eco/io/kitti_sequence.hpp>
 #include <eco/io/pcd.hpp>
 #include <eco/io/ply.hpp>
+#include <eco/workloads/scan_source.hpp>
 
+#include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
 #include <span>
@@ -27,6 +29,28 @@ ScanData read_frame(const io::KittiSequence& seq, std::size_t i, FrameParts part
   if (i < seq.times().size()) data.time = seq.times()[i];
   if (parts == FrameParts::Everything && seq.has_labels()) data.labels = seq.read_labels(i);
   return data;
+}
+
+ScanData read_source_frame(const workloads::OpenedSource& source, std::size_t i, FrameParts) {
+  workloads::WorkloadFrame frame = source.frames->frame(i);
+  ScanData data;
+  data.index = i;
+  data.pose = frame.world_T_sensor;
+  data.time = frame.time;
+  data.cloud.points = std::move(frame.points);
+  data.cloud.intensity = std::move(frame.intensities);
+  if (!frame.labels.empty()) data.labels = std::move(frame.labels);
+  if (!frame.point_times.empty()) data.point_times = std::move(frame.point_times);
+  return data;
+}
+
+/// An optional string argument: None or a str.
+std::string text_arg(const py::object& value, const char* name) {
+  if (value.is_none()) return {};
+  if (!py::isinstance<py::str>(value) && !py::isinstance(value, py::module_::import("os").attr("PathLike"))) {
+    throw py::type_error(std::string(name) + " must be a str or None, not " + std::string(py::str(value.get_type().attr("__name__"))));
+  }
+  return py::str(py::module_::import("os").attr("fspath")(value));
 }
 
 /// A cloud from caller arrays, for the writers.
@@ -89,6 +113,13 @@ poses when calib.txt exists, as KITTI's; else lidar poses, as BALM's), "Camera" 
 Iterating yields (pose (4, 4) float64 world_T_lidar, points (N, 3) float32 lidar frame) pairs,
 ready for EgoOctree.update(pose, points). Raises eco.io.Error naming the file and line at fault.)";
 
+constexpr const char* kSourceDoc = R"(What --data reads, opened: a KITTI-layout folder, a folder of .pcd/.ply/.bin
+files (name order), an .mcap or .db3 file, or a rosbag2 folder (metadata.yaml). Made by eco.io.open().
+
+Iterating yields (pose (4, 4) float64 world_T_lidar, points (N, 3) float32 sensor frame); a source
+without poses gives the identity (has_poses False: eco.odometry estimates them). read(i) gives the
+whole eco.io.Scan, with a recording's per-point times in point_times (seconds after scan.time).)";
+
 }  // namespace
 
 void bind_io(py::module_& io) {
@@ -136,6 +167,35 @@ void bind_io(py::module_& io) {
         return "KittiSequence('" + seq.folder().string() + "', " + std::to_string(seq.size()) +
                " scans)";
       });
+
+  py::class_<workloads::OpenedSource> source(io, "Source", kSourceDoc);
+  def_frames(source, "Frames in the source.", "read", "Frame `index` with its time, intensities and point times (an eco.io.Scan).",
+             &read_source_frame);
+  source.def_readonly("has_poses", &workloads::OpenedSource::has_poses, "False when every pose is the identity")
+      .def_readonly("description", &workloads::OpenedSource::description, "what was opened and how it is read")
+      .def_readonly("warnings", &workloads::OpenedSource::warnings, "what a user should know (a cut file, a guess)")
+      .def("__repr__", [](const workloads::OpenedSource& s) { return "Source(" + s.description + ")"; });
+  io.def(
+      "open",
+      [](const py::object& path, const py::object& poses, const py::object& topic, const py::object& time_field,
+         const std::string& time_unit) {
+        workloads::SourceOptions options;
+        options.poses = text_arg(poses, "poses");
+        options.recording.topic = text_arg(topic, "topic");
+        options.recording.time.field = text_arg(time_field, "time_field");
+        const std::optional<io::TimeUnit> unit = io::time_unit_named(time_unit);
+        if (!unit) throw py::value_error("time_unit = '" + time_unit + "' must be one of auto, s, ms, us, ns");
+        options.recording.time.unit = *unit;
+        const std::string where = text_arg(path, "path");
+        py::gil_scoped_release no_gil;
+        return workloads::open_source(where, options);
+      },
+      py::arg("path"), py::arg("poses") = py::none(), py::arg("topic") = py::none(), py::arg("time_field") = py::none(),
+      py::arg("time_unit") = "auto",
+      R"(Opens what `path` holds as an eco.io.Source (a KITTI folder, point-cloud files, an MCAP or
+rosbag2 recording). poses: a KITTI or TUM trajectory file; topic: the recording's PointCloud2
+topic (default: the only one); time_field / time_unit: where each point's time is and in what
+unit ("auto", "s", "ms", "us", "ns"). Raises eco.io.Error naming the file, byte or topic at fault.)");
 
   io.def(
       "read_kitti_scan", [](const fs::path& path) { return read_cloud(path, io::read_kitti_scan); },

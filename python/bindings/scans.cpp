@@ -19,6 +19,7 @@ Scan ScanData::to_python() && {
   out.points = arrays[0];
   out.intensity = arrays[1];
   out.labels = labels ? py::object(values_array(std::move(*labels))) : py::none();
+  out.point_times = point_times ? py::object(values_array(std::move(*point_times))) : py::none();
   return out;
 }
 
@@ -47,6 +48,8 @@ void bind_scan(py::module_& io) {
       .def_readonly("intensity", &Scan::intensity, "(N,) float32 reflectance, or None")
       .def_readonly("labels", &Scan::labels,
                     "(N,) uint32 SemanticKITTI labels, or None (ids >= 252 are moving objects)")
+      .def_readonly("point_times", &Scan::point_times,
+                    "(N,) float64 seconds of each point after `time` (a recording's per-point times), or None")
       .def("__repr__", [](const Scan& s) {
         return "Scan(index=" + std::to_string(s.index) +
                ", points=" + std::to_string(py::len(s.points)) + ")";

@@ -19,6 +19,7 @@ struct Scan {
   py::object points;     // (N, 3) float32, lidar frame
   py::object intensity;  // (N,) float32, or None
   py::object labels;     // (N,) uint32 SemanticKITTI labels, or None
+  py::object point_times;  // (N,) float64 seconds after `time`, or None
 };
 
 /// Everything a reader or the simulator produced for one frame. Built without the GIL, turned
@@ -29,6 +30,7 @@ struct ScanData {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   io::PointCloud cloud;
   std::optional<std::vector<std::uint32_t>> labels;
+  std::optional<std::vector<double>> point_times;
 
   [[nodiscard]] Scan to_python() &&;
   /// (pose, points): what iterating a sequence yields.

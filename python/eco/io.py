@@ -4,7 +4,8 @@
     for pose, points in seq:        # (4, 4) float64 world_T_lidar, (N, 3) float32 lidar frame
         tree.update(pose, points)
 
-KittiSequence, Scan, PoseFrame; read_kitti_scan, read_kitti_poses, read_ply, read_pcd, write_ply,
+open (any source: KITTI, point-cloud files, MCAP and rosbag2 recordings), Source, KittiSequence, Scan,
+PoseFrame; read_kitti_scan, read_kitti_poses, read_ply, read_pcd, write_ply,
 write_pcd. Every reader raises eco.io.Error (an OSError) naming the file and the line or byte at
 fault.
 """

@@ -37,6 +37,8 @@ struct OpenedSource {
   std::optional<Eigen::Isometry3d> velo_to_cam;  ///< KITTI's camera-frame poses were turned into the LiDAR's
   std::string description;                        ///< one line: what was opened, and how it is read
   std::vector<std::string> warnings;              ///< what the user should know (a cut file, a guess)
+
+  [[nodiscard]] std::size_t size() const { return frames ? frames->size() : 0; }
 };
 
 /// Opens `path`. Throws eco::io::Error naming the path and what it holds when it is none of the
