@@ -31,6 +31,8 @@ struct Record<LidarModel> {
         field("range_noise", &LidarModel::range_noise, "[m] standard deviation of range noise"),
         field("dropout", &LidarModel::dropout, "probability that a return is lost"),
         field("mount_height", &LidarModel::mount_height, "[m] above the road"),
+        field("rolling_sweep", &LidarModel::rolling_sweep,
+              "columns fired over the frame's period from where the sensor then is: smear, and per-point times"),
     };
   }
 };
@@ -77,6 +79,7 @@ ScanData simulated(const sim::Simulator& simulator, std::size_t i, FrameParts /*
   data.pose = frame.world_T_lidar;
   data.cloud = std::move(frame.cloud);
   data.labels = std::move(frame.labels);
+  if (!frame.point_times.empty()) data.point_times = std::move(frame.point_times);
   return data;
 }
 

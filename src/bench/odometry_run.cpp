@@ -186,7 +186,7 @@ std::vector<OdometryRun> run_odometry(const workloads::Workload& scans, std::siz
       if (!reference.empty()) odo.set_start(reference.front());
       for (std::size_t t = 0; t < frames; ++t) {
         const workloads::WorkloadFrame frame = scans.frame(t);
-        const odometry::FrameReport report = odo.register_frame(ScanView(frame.points));
+        const odometry::FrameReport report = odo.register_frame(ScanView(frame.points), frame.point_times);
         slots.put(report);
         if (observe) observe(map, odo, report);
       }

@@ -15,7 +15,7 @@ class SimWorkload final : public workloads::Workload {
   [[nodiscard]] workloads::WorkloadFrame frame(std::size_t index) const override {
     sim::SimFrame f = sim_.frame(index);
     return {index, f.world_T_lidar, std::move(f.cloud.points), std::move(f.labels), std::move(f.cloud.intensity),
-            f.time, {}};
+            f.time, std::move(f.point_times)};
   }
   [[nodiscard]] Eigen::Isometry3d pose(std::size_t index) const override { return sim_.pose(index); }
   [[nodiscard]] std::string name() const override { return "dynamic"; }

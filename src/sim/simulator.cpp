@@ -82,7 +82,11 @@ Eigen::Isometry3d Simulator::pose(std::size_t index) const {
     throw std::out_of_range("eco::sim::Simulator: frame " + std::to_string(index) + " of " +
                             std::to_string(c.frames));
   }
-  const double t = static_cast<double>(index) / c.rate_hz;
+  return pose_at(static_cast<double>(index) / c.rate_hz);
+}
+
+Eigen::Isometry3d Simulator::pose_at(double t) const {
+  const SimConfig& c = impl_->config;
   const RoutePoint p = impl_->city.routes[0].at(c.speed * t, c.city.lane_offset);
   const double sway = c.sway_deg * kDegree;
   const double pitch = sway * std::sin(2.0 * std::numbers::pi * t / 2.3);
@@ -104,13 +108,21 @@ SimFrame Simulator::frame(std::size_t index) const {
   frame.time = static_cast<double>(index) / c.rate_hz;
 
   const Eigen::Vector3d origin = frame.world_T_lidar.translation();
-  const Eigen::Matrix3d rotation = frame.world_T_lidar.linear();
   std::vector<TurnedBox> cars;  // the moving cars within reach at this instant
   for (const MovingCar& car : impl_->city.cars) {
     const std::size_t before = cars.size();
     car_bodies(impl_->city, car, c.city.lane_offset, frame.time, cars);
     const bool out_of_reach = (cars[before].centre - origin).head<2>().norm() > lidar.max_range + 5.0;
     if (out_of_reach) cars.resize(before);
+  }
+
+  // where each column fires from: the frame's pose, or with a rolling sweep the pose at its time
+  std::vector<Eigen::Isometry3d> column_poses(lidar.rolling_sweep ? static_cast<std::size_t>(lidar.columns) : 1,
+                                              frame.world_T_lidar);
+  std::vector<double> column_times(column_poses.size(), 0.0);
+  for (std::size_t col = 1; col < column_poses.size(); ++col) {
+    column_times[col] = static_cast<double>(col) / static_cast<double>(lidar.columns) / c.rate_hz;
+    column_poses[col] = pose_at(frame.time + column_times[col]);
   }
 
   Rng rng(c.seed, 0x5CA7000000000000ull + index);
@@ -126,7 +138,8 @@ SimFrame Simulator::frame(std::size_t index) const {
       const double azimuth = 2.0 * std::numbers::pi * col / lidar.columns;
       const Eigen::Vector3d in_sensor(std::cos(elevation) * std::cos(azimuth),
                                       std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
-      const Ray ray{origin, rotation * in_sensor};
+      const std::size_t fired = lidar.rolling_sweep ? static_cast<std::size_t>(col) : 0;
+      const Ray ray{column_poses[fired].translation(), column_poses[fired].linear() * in_sensor};
       const auto hit = impl_->caster.cast(ray, lidar.max_range, cars);
       if (!hit || hit->t < lidar.min_range) continue;
       const double range = hit->t + lidar.range_noise * rng.normal();
@@ -135,6 +148,7 @@ SimFrame Simulator::frame(std::size_t index) const {
       frame.cloud.points.push_back((range * in_sensor).cast<float>());
       frame.cloud.intensity.push_back(static_cast<float>(std::clamp(reflectance, 0.0, 1.0)));
       frame.labels.push_back(hit->label);
+      if (lidar.rolling_sweep) frame.point_times.push_back(column_times[fired]);
     }
   }
   return frame;

@@ -127,7 +127,7 @@ TEST(Simulator, WritesKittiThatTheReaderReadsBack) {
   for (std::size_t i = 0; i < 6; i += 5) {
     const SimFrame expected = sim.frame(i);
     const io::KittiFrame read = sequence.read(i);
-    SimFrame got{i, expected.time, read.world_T_lidar, read.cloud, sequence.read_labels(i)};
+    SimFrame got{i, expected.time, read.world_T_lidar, read.cloud, sequence.read_labels(i), {}};
     EXPECT_LT((got.world_T_lidar.matrix() - expected.world_T_lidar.matrix()).cwiseAbs().maxCoeff(), 1e-12);
     got.world_T_lidar = expected.world_T_lidar;
     expect_same_frame(expected, got);

@@ -24,6 +24,8 @@ struct OdometryOptions {
   std::string out = "results/odometry";
   std::size_t frames = 0;
   std::uint64_t seed = 1;
+  double speed = sim::SimConfig{}.speed;  // the simulator's, without --data
+  bool rolling_sweep = false;
   std::string map = "eco";
   odometry::OdometryConfig config;
 };
@@ -33,7 +35,8 @@ nlohmann::json options_json(const OdometryOptions& o, const SourceFlags& source)
   nlohmann::json out{{"frames", o.frames}, {"seed", o.seed}, {"map", o.map}, {"max-range", c.max_range},
                      {"min-range", c.min_range}, {"voxel-size", c.voxel_size},
                      {"max-points-per-voxel", c.max_points_per_voxel}, {"box-side", c.box_side},
-                     {"neighbours", c.neighbours}, {"max-iterations", c.max_iterations}, {"threads", c.threads}};
+                     {"neighbours", c.neighbours}, {"max-iterations", c.max_iterations}, {"threads", c.threads},
+                     {"deskew", c.deskew}, {"speed", o.speed}, {"rolling-sweep", o.rolling_sweep}};
   source.add_to(out);
   return out;
 }
@@ -67,9 +70,11 @@ int run(OdometryOptions o, const SourceFlags& data, const ViewFlags& viewing, co
     sim::SimConfig sim;
     sim.seed = o.seed;
     sim.frames = o.frames > 0 ? o.frames : 300;
+    sim.speed = o.speed;
+    sim.lidar.rolling_sweep = o.rolling_sweep;
     scans = std::make_unique<bench::SimWorkload>(sim);
     for (std::size_t t = 0; t < sim.frames; ++t) reference.push_back(scans->pose(t));
-    source = "the simulated drive (seed " + std::to_string(o.seed) + ")";
+    source = "the simulated drive (seed " + std::to_string(o.seed) + (o.rolling_sweep ? ", rolling sweep" : "") + ")";
   } else {
     workloads::OpenedSource opened = data.open();
     std::printf("%s\n", opened.description.c_str());
@@ -128,6 +133,12 @@ Run add_odometry(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--frames", o->frames, "frames to run (0 = all; 300 for the simulator)")->capture_default_str();
   cmd->add_option("--out", o->out, "folder for the results")->capture_default_str();
   cmd->add_option("--seed", o->seed, "the simulator's seed without --data")->capture_default_str();
+  cmd->add_option("--speed", o->speed, "[m/s] the simulator's vehicle, without --data")->capture_default_str();
+  cmd->add_option("--rolling-sweep", o->rolling_sweep,
+                  "the simulator's LiDAR fires its columns over the frame: a smeared scan with per-point times")
+      ->capture_default_str();
+  cmd->add_option("--deskew", c.deskew, "correct each scan for the motion during its sweep, when the data times its points")
+      ->capture_default_str();
   std::vector<std::string> names = odometry::all_local_map_names();
   names.push_back("all");
   cmd->add_option("--map", o->map, "the map registered against, or all four on the same frames")

@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace eco::odometry {
@@ -40,6 +41,11 @@ struct OdometryConfig {
   int max_iterations = 50;
   double convergence = 1e-4;      ///< stop once a step moves the pose less than this [m, rad]
   unsigned threads = 1;           ///< MapSettings::threads
+  /// Correct each scan for the sensor's motion during its sweep, from its points' times (when
+  /// register_frame is given them): constant velocity, the last frame's motion spread over the
+  /// sweep, each point moved to where the sensor was at the scan's stamp (time 0), as KISS-ICP does
+  /// about the sweep's middle.
+  bool deskew = true;
 
   /// Throws std::invalid_argument naming the first value out of range.
   void validate() const;
@@ -55,6 +61,7 @@ struct FrameReport {
   std::size_t scan_points = 0;     ///< as given
   std::size_t dropped_invalid = 0; ///< not finite
   std::size_t dropped_range = 0;   ///< nearer than min_range or farther than max_range
+  bool deskewed = false;           ///< the scan was corrected for the motion during its sweep
   std::size_t map_input = 0;       ///< points handed to the map
   std::size_t source = 0;          ///< points registered
   int iterations = 0;
@@ -84,8 +91,11 @@ class Odometry {
   Odometry& operator=(Odometry&&) noexcept;
 
   /// Registers `scan` (sensor frame) and adds it to the map. The first frame is placed at
-  /// `start` (set_start), with nothing to register against.
-  FrameReport register_frame(ScanView scan);
+  /// `start` (set_start), with nothing to register against. `point_times`, when given, holds
+  /// each point's time in seconds after the scan's stamp (the instant its pose is estimated
+  /// for), one per point: the sweep they span is taken as one frame's motion, for deskewing.
+  /// Throws std::invalid_argument when their count is not the scan's.
+  FrameReport register_frame(ScanView scan, std::span<const double> point_times = {});
   /// Where the first frame lies (default the identity): a reference trajectory's first pose, so
   /// that the estimate shares its world frame. Only before the first frame.
   void set_start(const Eigen::Isometry3d& world_T_sensor);

@@ -29,6 +29,10 @@ struct LidarModel {
   double range_noise = 0.02;       ///< [m] standard deviation of Gaussian range noise
   double dropout = 0.02;           ///< probability that a return is lost
   double mount_height = 1.73;      ///< [m] above the road, as on KITTI's car
+  /// The columns fired one after another over the frame's period, each from where the sensor is
+  /// then, as a spinning LiDAR does: a moving sensor's scan is smeared, and each point carries its
+  /// time (SimFrame::point_times). False: every ray from the frame's pose at once.
+  bool rolling_sweep = false;
 };
 
 /// The city: a grid of streets `block_pitch` apart; everything else is drawn from the seed.
@@ -60,6 +64,9 @@ struct SimFrame {
   Eigen::Isometry3d world_T_lidar = Eigen::Isometry3d::Identity();
   io::PointCloud cloud;                             ///< lidar frame, with reflectance in [0, 1]
   std::vector<std::uint32_t> labels;                ///< SemanticKITTI id per point (io::label)
+  /// [s] after `time` each point was measured, in the frame of the sensor then (rolling_sweep);
+  /// empty without a rolling sweep.
+  std::vector<double> point_times;
 };
 
 class Simulator {
@@ -73,6 +80,8 @@ class Simulator {
   /// Frame `index` (any order; throws std::out_of_range past size()).
   [[nodiscard]] SimFrame frame(std::size_t index) const;
   [[nodiscard]] Eigen::Isometry3d pose(std::size_t index) const;
+  /// The sensor's pose at `time` seconds into the drive (pose(i) is pose_at(i / rate_hz)).
+  [[nodiscard]] Eigen::Isometry3d pose_at(double time) const;
   [[nodiscard]] const SimConfig& config() const;
   [[nodiscard]] std::size_t static_shape_count() const;
 
