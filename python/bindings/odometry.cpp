@@ -34,6 +34,7 @@ struct Record<OdometryConfig> {
         field("max_iterations", &OdometryConfig::max_iterations, "ICP iterations at most"),
         field("convergence", &OdometryConfig::convergence, "a step under this ends the iterations [m, rad]"),
         field("threads", &OdometryConfig::threads, "threads ECO's batch KNN spreads the queries over"),
+        field("deskew", &OdometryConfig::deskew, "correct scans given point times for the motion during their sweep"),
     };
   }
 };
@@ -48,6 +49,7 @@ struct Record<FrameReport> {
         field("scan_points", &FrameReport::scan_points, "points given"),
         field("dropped_invalid", &FrameReport::dropped_invalid, "points not finite"),
         field("dropped_range", &FrameReport::dropped_range, "points out of [min_range, max_range]"),
+        field("deskewed", &FrameReport::deskewed, "the scan was corrected for the motion during its sweep"),
         field("map_input", &FrameReport::map_input, "points handed to the map"),
         field("source", &FrameReport::source, "points registered"),
         field("iterations", &FrameReport::iterations, "ICP iterations"),
@@ -117,16 +119,25 @@ void bind_odometry(py::module_& o) {
            py::arg("map") = "eco", py::arg("config") = py::none())
       .def(
           "register_frame",
-          [](odometry::Odometry& odo, const py::handle& points) {
+          [](odometry::Odometry& odo, const py::handle& points, const py::object& times) {
             const Rows3 rows(points, "points", false);
             std::vector<float> storage;
             const ScanView scan = rows.scan(storage);
+            std::vector<double> point_times;
+            if (!times.is_none()) {
+              const py::array_t<double, py::array::forcecast> values(times);
+              if (values.ndim() != 1 || std::size_t(values.shape(0)) != rows.size()) {
+                throw py::value_error("times must have shape (" + std::to_string(rows.size()) + ",), one per point");
+              }
+              point_times.assign(values.data(), values.data() + rows.size());
+            }
             py::gil_scoped_release no_gil;
-            return odo.register_frame(scan);
+            return odo.register_frame(scan, point_times);
           },
-          py::arg("points"),
+          py::arg("points"), py::arg("times") = py::none(),
           "Registers an (N, 3) scan (sensor frame; points not finite or out of range are skipped and "
-          "counted) and adds it to the map. Returns its FrameReport.")
+          "counted) and adds it to the map. `times`: (N,) seconds of each point after the scan's stamp "
+          "(eco.io.Scan.point_times), for deskewing. Returns its FrameReport.")
       .def(
           "set_start", [](odometry::Odometry& odo, const py::handle& pose) { odo.set_start(pose_arg(pose, "pose")); },
           py::arg("pose"), "Where the first frame lies, (4, 4) (default the identity); before the first frame only.")

@@ -66,3 +66,16 @@ def test_settings_reports_and_bad_input():
         odo.set_start(np.eye(4))
     with pytest.raises(ValueError, match="same frames"):
         eco.odometry.trajectory_errors([np.eye(4)] * 3, [np.eye(4)] * 4)
+
+
+def test_point_times_deskew_a_smeared_sweep():
+    simulator = eco.sim.Simulator(frames=12, seed=2, speed=15.0, lidar={"beams": 32, "columns": 1000, "rolling_sweep": True})
+    odo = eco.odometry.Odometry(map="eco")
+    odo.set_start(simulator.pose(0))
+    reports = [odo.register_frame(scan.points, scan.point_times) for scan in (simulator.frame(i) for i in range(12))]
+    assert [r.deskewed for r in reports] == [False] + [True] * 11
+    errors = eco.odometry.trajectory_errors(odo.poses, [simulator.pose(i) for i in range(12)])
+    assert errors["ate_rmse"] < 0.05
+    with pytest.raises(ValueError, match="times must have shape"):
+        odo.register_frame(simulator.frame(0).points, np.zeros(3))
+    assert eco.odometry.Odometry(map="eco", deskew=False).config.deskew is False

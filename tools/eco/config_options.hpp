@@ -3,6 +3,8 @@
 // (--box_side, --density_cap.cell_size, --insert_policy AllInBox), from the field table, so the flags
 // take the same names and values as config.json and Python and refuse the same ones.
 
+#include "spellings.hpp"
+
 #include <eco/config_fields.hpp>
 
 #include <CLI/CLI.hpp>
@@ -41,7 +43,9 @@ class ConfigFlags {
                          : f.kind == ConfigField::Kind::Switch ? "BOOL"
                                                                : "NAME";
       options_.push_back(
-          cmd.add_option("--" + std::string(f.name), texts_[i++], f.summary(defaults))->type_name(type)->group("Tree configuration"));
+          cmd.add_option(both_spellings("--" + std::string(f.name)), texts_[i++], f.summary(defaults))
+              ->type_name(type)
+              ->group("Tree configuration"));
     }
   }
 

@@ -2,6 +2,7 @@
 // a sequence through ECO, run a LiDAR odometry on it, or look at a run in a web browser.
 
 #include "commands.hpp"
+#include "spellings.hpp"
 
 #include <eco/version.hpp>
 
@@ -30,7 +31,13 @@ int main(int argc, char** argv) {
   const eco::cli::Run run = eco::cli::add_run(app, command_line);
   const eco::cli::Run odometry = eco::cli::add_odometry(app, command_line);
   const eco::cli::Run view = eco::cli::add_view(app, command_line);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    std::fputs(eco::cli::did_you_mean(app).c_str(), stderr);
+    return code;
+  }
   try {
     if (app.got_subcommand("simulate")) return simulate();
     if (app.got_subcommand("bench")) return bench();

@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "options_file.hpp"
 #include "source_flags.hpp"
+#include "spellings.hpp"
 #include "view_flags.hpp"
 
 #include "bench/odometry_run.hpp"
@@ -134,7 +135,7 @@ Run add_odometry(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--out", o->out, "folder for the results")->capture_default_str();
   cmd->add_option("--seed", o->seed, "the simulator's seed without --data")->capture_default_str();
   cmd->add_option("--speed", o->speed, "[m/s] the simulator's vehicle, without --data")->capture_default_str();
-  cmd->add_option("--rolling-sweep", o->rolling_sweep,
+  cmd->add_option(both_spellings("--rolling-sweep"), o->rolling_sweep,
                   "the simulator's LiDAR fires its columns over the frame: a smeared scan with per-point times")
       ->capture_default_str();
   cmd->add_option("--deskew", c.deskew, "correct each scan for the motion during its sweep, when the data times its points")
@@ -144,15 +145,15 @@ Run add_odometry(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--map", o->map, "the map registered against, or all four on the same frames")
       ->check(CLI::IsMember(names))
       ->capture_default_str();
-  cmd->add_option("--max-range", c.max_range, "[m] farther returns are dropped")->capture_default_str();
-  cmd->add_option("--min-range", c.min_range, "[m] nearer returns are dropped")->capture_default_str();
-  cmd->add_option("--voxel-size", c.voxel_size, "[m] the map's voxel; the scan goes in at half, is registered at 1.5x")
+  cmd->add_option(both_spellings("--max-range"), c.max_range, "[m] farther returns are dropped")->capture_default_str();
+  cmd->add_option(both_spellings("--min-range"), c.min_range, "[m] nearer returns are dropped")->capture_default_str();
+  cmd->add_option(both_spellings("--voxel-size"), c.voxel_size, "[m] the map's voxel; the scan goes in at half, is registered at 1.5x")
       ->capture_default_str();
-  cmd->add_option("--max-points-per-voxel", c.max_points_per_voxel, "the map's density cap")->capture_default_str();
-  cmd->add_option("--box-side", c.box_side, "[m] side of the cube the map holds around the sensor")
+  cmd->add_option(both_spellings("--max-points-per-voxel"), c.max_points_per_voxel, "the map's density cap")->capture_default_str();
+  cmd->add_option(both_spellings("--box-side"), c.box_side, "[m] side of the cube the map holds around the sensor")
       ->capture_default_str();
   cmd->add_option("--neighbours", c.neighbours, "k: map points each plane is fitted to")->capture_default_str();
-  cmd->add_option("--max-iterations", c.max_iterations, "ICP iterations at most")->capture_default_str();
+  cmd->add_option(both_spellings("--max-iterations"), c.max_iterations, "ICP iterations at most")->capture_default_str();
   cmd->add_option("--threads", c.threads, "threads ECO's batch KNN spreads the queries over")->capture_default_str();
   auto viewing = std::make_shared<ViewFlags>(*cmd);
   auto file = std::make_shared<OptionsFile>(*cmd, "odometry");

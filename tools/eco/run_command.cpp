@@ -2,6 +2,7 @@
 // asked, writing the held points and the voxel map as PLY.
 
 #include "commands.hpp"
+#include "spellings.hpp"
 #include "config_options.hpp"
 #include "options_file.hpp"
 #include "source_flags.hpp"
@@ -162,9 +163,11 @@ int run(const RunOptions& o, const SourceFlags& source, const ViewFlags& viewing
   LiveView live(viewing, o.out, (std::filesystem::path(o.out) / "view").string(), shown);
   if (live.recorder() && first > 0) live.recorder()->carry(std::uint32_t(first - 1), tree.points_with_attributes());
   std::unique_ptr<TrailReport> trails;
-  double update_ms = 0.0;
+  double update_ms = 0.0, read_ms = 0.0;
   for (std::size_t t = first; t < total; ++t) {
+    const auto reading = bench::Clock::now();
     const workloads::WorkloadFrame frame = scans->frame(t);
+    read_ms += bench::ms_since(reading);
     std::optional<workloads::AttributedScan> attributed;
     const ScanView scan = workloads::scan_for(frame, config.attributes, attributed);
     const auto start = bench::Clock::now();
@@ -191,6 +194,10 @@ int run(const RunOptions& o, const SourceFlags& source, const ViewFlags& viewing
   }
   if (o.export_every > 0) std::printf("wrote <frame>_points.ply and <frame>_voxels.ply (ego frame) to %s\n", o.out.c_str());
   const std::size_t ran = total > first ? total - first : 0;
+  if (ran > 0) {
+    std::printf("a frame: %.2f ms to read (and decode or simulate), %.2f ms to update (read / update = %.2f)\n",
+                read_ms / double(ran), update_ms / double(ran), update_ms > 0 ? read_ms / update_ms : 0.0);
+  }
   if (trails) trails->print(ran ? update_ms / double(ran) : 0.0, ran);
   const std::string broken = tree.check_invariants();
   std::printf("invariants: %s\n", broken.empty() ? "all hold" : broken.c_str());
@@ -207,13 +214,13 @@ Run add_run(CLI::App& app, const std::string& command_line) {
   CLI::App* cmd = app.add_subcommand("run", "Stream a sequence's scans through ECO, printing per-frame figures");
   auto source = std::make_shared<SourceFlags>(*cmd, "a simulated drive");
   cmd->add_option("--frames", o->frames, "frames to run (0 = all; 100 for the simulator)")->capture_default_str();
-  cmd->add_option("--export-every", o->export_every, "write held points and voxel map as PLY every K frames (0 = never)")
+  cmd->add_option(both_spellings("--export-every"), o->export_every, "write held points and voxel map as PLY every K frames (0 = never)")
       ->capture_default_str();
   cmd->add_option("--out", o->out, "folder for config.json and the PLY files")->capture_default_str();
   cmd->add_option("--voxel", o->voxel, "voxel map resolution [m]")->capture_default_str();
   cmd->add_option("--seed", o->seed, "the simulator's seed without --data")->capture_default_str();
   cmd->add_option("--save", o->save, "write the map to FILE after the last frame (EgoOctree::save)");
-  cmd->add_option("--save-every", o->save_every, "also write it every K frames (to --save, else <out>/map.eco)")
+  cmd->add_option(both_spellings("--save-every"), o->save_every, "also write it every K frames (to --save, else <out>/map.eco)")
       ->capture_default_str();
   cmd->add_option("--load", o->load, "go on from the map saved in FILE: its configuration, from the frame after its last")
       ->check(CLI::ExistingFile);

@@ -1,6 +1,7 @@
 // eco simulate: writes a synthetic drive (eco::sim) in KITTI's layout.
 
 #include "commands.hpp"
+#include "spellings.hpp"
 #include "options_file.hpp"
 
 #include <eco/sim/simulator.hpp>
@@ -18,6 +19,12 @@ Run add_simulate(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--out", *out, "folder to write (velodyne/, labels/, poses.txt, calib.txt, times.txt)")->required();
   cmd->add_option("--frames", options->frames, "scans to write")->capture_default_str();
   cmd->add_option("--seed", options->seed, "city and noise seed: the same seed gives the same bytes")->capture_default_str();
+  cmd->add_option("--beams", options->lidar.beams, "the LiDAR's beams (fewer: a lighter drive)")->capture_default_str();
+  cmd->add_option("--columns", options->lidar.columns, "its columns over 360 degrees")->capture_default_str();
+  cmd->add_option("--speed", options->speed, "[m/s] the vehicle's")->capture_default_str();
+  cmd->add_option(both_spellings("--rolling-sweep"), options->lidar.rolling_sweep,
+                  "fire the columns over the frame (a moving sensor's smear; times.txt stays per frame)")
+      ->capture_default_str();
   auto file = std::make_shared<OptionsFile>(*cmd, "simulate");
   cmd->footer("The folder also gets config.json (feed it back with --config to write the same drive).\n"
               "Example:\n  eco simulate --out data/sim --frames 300 --seed 1");
@@ -26,7 +33,11 @@ Run add_simulate(CLI::App& app, const std::string& command_line) {
     const auto start = std::chrono::steady_clock::now();
     const sim::Simulator simulator(*options);
     simulator.write_kitti(*out);
-    write_options_file(*out, "simulate", command_line, {{"frames", options->frames}, {"seed", options->seed}}, nullptr);
+    write_options_file(*out, "simulate", command_line,
+                       {{"frames", options->frames}, {"seed", options->seed}, {"beams", options->lidar.beams},
+                        {"columns", options->lidar.columns}, {"speed", options->speed},
+                        {"rolling-sweep", options->lidar.rolling_sweep}},
+                       nullptr);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("wrote %zu frames (seed %llu) to %s in %.1f s\n", simulator.size(),
                 static_cast<unsigned long long>(options->seed), out->c_str(), seconds);

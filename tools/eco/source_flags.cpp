@@ -1,4 +1,5 @@
 #include "source_flags.hpp"
+#include "spellings.hpp"
 
 #include <eco/io/error.hpp>
 
@@ -15,10 +16,10 @@ SourceFlags::SourceFlags(CLI::App& cmd, const std::string& without_data) {
                  "poses from this file (KITTI: 12 numbers a line, a scan a line; TUM: t x y z qx qy qz qw, at the "
                  "clouds' stamps) instead of the data's own");
   cmd.add_option("--topic", options.recording.topic, "the recording's PointCloud2 topic (default: the only one)");
-  cmd.add_option("--time-field", options.recording.time.field,
+  cmd.add_option(both_spellings("--time-field"), options.recording.time.field,
                  "the point field holding each point's time (default: the first of t, time, timestamp, timestamps, "
                  "offset_time, stamps)");
-  cmd.add_option("--time-unit", time_unit, "its unit: s, ms, us, ns, or auto (integers ns, floats s)")
+  cmd.add_option(both_spellings("--time-unit"), time_unit, "its unit: s, ms, us, ns, or auto (integers ns, floats s)")
       ->check(CLI::IsMember({"auto", "s", "ms", "us", "ns"}))
       ->capture_default_str();
 }

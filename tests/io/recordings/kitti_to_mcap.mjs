@@ -2,16 +2,26 @@
 // file of sensor_msgs/PointCloud2 on /points (zstd chunks), with foxglove's writers: the same
 // frames as a robot's recording, for comparing the two through `eco run`.
 //
-// usage: node kitti_to_mcap.mjs KITTI_DIR OUT.mcap
+// usage: node kitti_to_mcap.mjs KITTI_DIR OUT.mcap [none|lz4|zstd (default)] [--cdr OUT.cdrs]
+// --cdr also writes the messages as they are (u64 log time, u32 length, CDR bytes, little-endian)
+// for a rosbag2 SQLite file to be made of them.
 
 import { McapWriter } from "@mcap/core";
 import { parse } from "@foxglove/rosmsg";
 import { MessageWriter } from "@foxglove/rosmsg2-serialization";
 import * as zstd from "@foxglove/wasm-zstd";
+import lz4 from "lz4js";
 import { open } from "node:fs/promises";
-import { readdirSync, readFileSync } from "node:fs";
+import { readdirSync, readFileSync, openSync, writeSync, closeSync } from "node:fs";
 
-const [dir, out] = process.argv.slice(2);
+const [dir, out, compression = "zstd"] = process.argv.slice(2);
+const cdrAt = process.argv.indexOf("--cdr");
+const cdr = cdrAt > 0 ? openSync(process.argv[cdrAt + 1], "w") : null;
+const COMPRESSORS = {
+  none: undefined,
+  lz4: (data) => ({ compression: "lz4", compressedData: lz4.compress(data) }),
+  zstd: (data) => ({ compression: "zstd", compressedData: zstd.compress(data, 3) }),
+};
 await zstd.isLoaded;
 const definition = `std_msgs/Header header
 uint32 height
@@ -41,7 +51,7 @@ const handle = await open(out, "w");
 let size = 0n;
 const mcap = new McapWriter({
   writable: { write: async (b) => { await handle.write(b); size += BigInt(b.byteLength); }, position: () => size },
-  compressChunk: (data) => ({ compression: "zstd", compressedData: zstd.compress(data, 3) }),
+  compressChunk: COMPRESSORS[compression],
 });
 await mcap.start({ profile: "ros2", library: "eco-tests kitti_to_mcap" });
 const schema = await mcap.registerSchema({ name: "sensor_msgs/msg/PointCloud2", encoding: "ros2msg",
@@ -58,8 +68,17 @@ for (const [k, file] of scans.entries()) {
     fields: [["x", 0], ["y", 4], ["z", 8], ["intensity", 12]].map(([name, offset]) => ({ name, offset, datatype: 7, count: 1 })),
     is_bigendian: false, point_step: 16, row_step: data.length, data, is_dense: true,
   };
-  await mcap.addMessage({ channelId: channel, sequence: k, logTime: stamp, publishTime: stamp, data: writer.writeMessage(message) });
+  const bytes_out = writer.writeMessage(message);
+  await mcap.addMessage({ channelId: channel, sequence: k, logTime: stamp, publishTime: stamp, data: bytes_out });
+  if (cdr !== null) {
+    const head = Buffer.alloc(12);
+    head.writeBigUInt64LE(stamp, 0);
+    head.writeUInt32LE(bytes_out.byteLength, 8);
+    writeSync(cdr, head);
+    writeSync(cdr, bytes_out);
+  }
 }
 await mcap.end();
 await handle.close();
+if (cdr !== null) closeSync(cdr);
 console.log(`wrote ${scans.length} clouds to ${out}`);
