@@ -46,8 +46,9 @@ void decompress_lz4(std::span<const std::uint8_t> in, std::vector<std::uint8_t>&
   }
 }
 
-void decompress_zstd(std::span<const std::uint8_t> in, std::vector<std::uint8_t>& out, const ByteReader& where) {
-  const std::size_t written = ZSTD_decompress(out.data(), out.size(), in.data(), in.size());
+void decompress_zstd(ZSTD_DCtx* context, std::span<const std::uint8_t> in, std::vector<std::uint8_t>& out,
+                     const ByteReader& where) {
+  const std::size_t written = ZSTD_decompressDCtx(context, out.data(), out.size(), in.data(), in.size());
   if (ZSTD_isError(written)) where.fail(std::string("zstd chunk: ") + ZSTD_getErrorName(written));
   if (written != out.size()) {
     where.fail("zstd chunk: " + std::to_string(written) + " bytes, not the " + std::to_string(out.size()) + " its header says");
@@ -55,6 +56,8 @@ void decompress_zstd(std::span<const std::uint8_t> in, std::vector<std::uint8_t>
 }
 
 }  // namespace
+
+void McapStore::FreeZstd::operator()(ZSTD_DCtx* context) const { ZSTD_freeDCtx(context); }
 
 McapStore::McapStore(const std::filesystem::path& file) : name_(file.string()), file_(file, std::ios::binary) {
   if (!file_) throw Error(name_, "", "cannot be opened");
@@ -162,7 +165,8 @@ std::span<const std::uint8_t> McapStore::chunk_records(std::uint64_t chunk) {
   } else if (compression == "lz4") {
     decompress_lz4(records, chunk_, in);
   } else if (compression == "zstd") {
-    decompress_zstd(records, chunk_, in);
+    if (!zstd_) zstd_.reset(ZSTD_createDCtx());
+    decompress_zstd(zstd_.get(), records, chunk_, in);
   } else {
     in.fail_at(compression_at, "compression '" + compression + "' is not one of lz4, zstd or none");
   }

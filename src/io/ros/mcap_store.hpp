@@ -9,7 +9,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <vector>
+
+struct ZSTD_DCtx_s;
+using ZSTD_DCtx = ZSTD_DCtx_s;
 
 namespace eco::io::detail {
 
@@ -51,6 +55,10 @@ class McapStore final : public MessageStore {
   std::uint64_t cached_chunk_ = std::uint64_t(-1);
   std::vector<std::uint8_t> chunk_;
   std::vector<std::uint8_t> buffer_;
+  struct FreeZstd {
+    void operator()(ZSTD_DCtx* context) const;
+  };
+  std::unique_ptr<ZSTD_DCtx, FreeZstd> zstd_;  // kept: a context's tables are not remade a chunk
 };
 
 }  // namespace eco::io::detail

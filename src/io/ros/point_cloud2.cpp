@@ -208,20 +208,31 @@ DecodedCloud CloudDecoder::decode(const PointCloud2& cloud, const std::string& s
   if (time) out.times.reserve(std::size_t(points));
   const double unit = time ? seconds_per(layout_->time_unit) : 0.0;
   const double stamp = double(cloud.stamp_ns) * 1e-9;
+  // float32 coordinates, as most drivers write them, read without going through double
+  const bool floats = xyz[0]->type == FieldType::Float32 && xyz[1]->type == FieldType::Float32 &&
+                      xyz[2]->type == FieldType::Float32;
   for (std::uint32_t row = 0; row < cloud.height; ++row) {
     const std::uint8_t* p = cloud.data.data() + std::size_t(row) * cloud.row_step;
     for (std::uint32_t column = 0; column < cloud.width; ++column, p += cloud.point_step) {
-      const Eigen::Vector3d v(value_of(xyz[0]->type, p + xyz[0]->offset), value_of(xyz[1]->type, p + xyz[1]->offset),
-                              value_of(xyz[2]->type, p + xyz[2]->offset));
+      Eigen::Vector3f v;
+      if (floats) {
+        std::memcpy(&v.x(), p + xyz[0]->offset, 4);
+        std::memcpy(&v.y(), p + xyz[1]->offset, 4);
+        std::memcpy(&v.z(), p + xyz[2]->offset, 4);
+      } else {
+        v = Eigen::Vector3d(value_of(xyz[0]->type, p + xyz[0]->offset), value_of(xyz[1]->type, p + xyz[1]->offset),
+                            value_of(xyz[2]->type, p + xyz[2]->offset))
+                .cast<float>();
+      }
       if (!v.allFinite()) {
         ++out.skipped_not_finite;
         continue;
       }
-      if (v.x() == 0.0 && v.y() == 0.0 && v.z() == 0.0) {
+      if (v.x() == 0.0f && v.y() == 0.0f && v.z() == 0.0f) {
         ++out.skipped_zero;
         continue;
       }
-      out.points.push_back(v.cast<float>());
+      out.points.push_back(v);
       if (intensity) out.intensities.push_back(float(value_of(intensity->type, p + intensity->offset)));
       if (time) {
         const double t = value_of(time->type, p + time->offset) * unit;

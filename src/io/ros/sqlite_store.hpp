@@ -33,7 +33,6 @@ class SqliteStore final : public MessageStore {
   sqlite3_stmt* fetch_ = nullptr;  // SELECT data FROM messages WHERE id = ?
   std::vector<TopicInfo> topics_;
   std::vector<std::int64_t> topic_ids_;
-  std::vector<std::uint8_t> buffer_;
 };
 
 }  // namespace eco::io::detail
