@@ -69,11 +69,9 @@ OpenedSource open_source(const fs::path& path, const SourceOptions& options) {
     out.frames = std::move(frames);
     return out;
   }
-  if (path.extension() == ".bag") {
-    throw io::Error(path.string(), "", "is a ROS 1 bag, which eco does not read yet: convert it to MCAP (mcap convert)");
-  }
   throw io::Error(path.string(), "", "is none of what --data reads: a KITTI-layout folder (velodyne/), a folder of .pcd, "
-                                     ".ply or .bin files, an .mcap or .db3 file, or a rosbag2 folder (metadata.yaml)");
+                                     ".ply or .bin files, an .mcap, .db3 or .bag file, a rosbag2 folder (metadata.yaml) "
+                                     "or a folder of ROS 1 bags");
 }
 
 }  // namespace eco::workloads

@@ -1,6 +1,6 @@
 // Recordings written by other people's code (foxglove's MCAP and CDR writers, SQLite in rosbag2's
 // schema: tests/io/recordings/) read back cloud by cloud, each point, intensity and time against
-// what the writer put in; drivers' layouts found by name, type and value; damage refused or, for a
+// what the writer put in (ROS 1 bags written by Debian's rosbag too); drivers' layouts found by name, type and value; damage refused or, for a
 // file cut short, read up to the cut and named.
 
 #include <eco/io/error.hpp>
@@ -29,6 +29,12 @@ fs::path recordings() {
 
 const nlohmann::json& expected() {
   static const nlohmann::json json = nlohmann::json::parse(std::ifstream(recordings() / "expected.json"));
+  return json;
+}
+
+/// The ROS 1 bags' (write_ros1_bags.py, with Debian's rosbag).
+const nlohmann::json& ros1_expected() {
+  static const nlohmann::json json = nlohmann::json::parse(std::ifstream(recordings() / "ros1_expected.json"));
   return json;
 }
 
@@ -215,6 +221,36 @@ TEST_F(RecordingTest, DamageIsRefusedNamingTheFileAndByte) {
   EXPECT_NE(error_of(recordings() / "missing.mcap").find("missing.mcap"), std::string::npos);
   const std::string not_db3 = error_of(damaged_copy("ouster_none.mcap", "not.db3", [](std::string&) {}));
   EXPECT_NE(not_db3.find("not.db3"), std::string::npos) << not_db3;
+}
+
+TEST_F(RecordingTest, Ros1BagsWrittenByRosbagAsWritten) {
+  std::size_t topics = 0;
+  for (const auto& [file, by_topic] : ros1_expected().items()) {
+    for (const auto& [topic, content] : by_topic.items()) {
+      const fs::path path = recordings() / file;
+      Recording bag(path, {topic, {}});
+      expect_clouds(path, topic, content["clouds"], bag);
+      ++topics;
+    }
+  }
+  EXPECT_EQ(topics, 6u);  // uncompressed, bz2, lz4; a split pair; two lidars
+  EXPECT_NE(Recording(recordings() / "split_bags", {}).describe().find("ROS 1 bags, 2 files"), std::string::npos);
+  EXPECT_NE(Recording(recordings() / "ouster_lz4.bag", {}).describe().find("(ROS 1 bag)"), std::string::npos);
+}
+
+TEST_F(RecordingTest, Ros1TopicsAreListedAndDamageNamed) {
+  const std::string several = error_of(recordings() / "two_lidars.bag");
+  EXPECT_NE(several.find("several PointCloud2 topics"), std::string::npos) << several;
+  for (const char* line : {"/front/points", "/rear/points", "/odom", "nav_msgs/Odometry", "sensor_msgs/PointCloud2", "4 messages"}) {
+    EXPECT_NE(several.find(line), std::string::npos) << line << " in " << several;
+  }
+  const std::string wrong = error_of(recordings() / "two_lidars.bag", "/odom");
+  EXPECT_NE(wrong.find("holds nav_msgs/Odometry, not sensor_msgs/PointCloud2"), std::string::npos) << wrong;
+  // cut short: its index, written last, is gone
+  const fs::path cut = damaged_copy("ouster_none.bag", "cut.bag", [](std::string& b) { b.resize(b.size() / 2); });
+  const std::string unindexed = error_of(cut);
+  EXPECT_NE(unindexed.find("cut.bag: "), std::string::npos) << unindexed;
+  EXPECT_NE(error_of(damaged_copy("ouster_none.mcap", "not_a.bag", [](std::string&) {})).find("not_a.bag: "), std::string::npos);
 }
 
 }  // namespace

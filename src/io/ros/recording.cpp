@@ -1,6 +1,7 @@
 #include <eco/io/recording.hpp>
 
 #include "io/ros/mcap_store.hpp"
+#include "io/ros/ros1_bag_store.hpp"
 #include "io/ros/sqlite_store.hpp"
 
 #include <eco/io/error.hpp>
@@ -17,20 +18,26 @@ bool is_cloud_type(const std::string& type) {
   return type == "sensor_msgs/msg/PointCloud2" || type == "sensor_msgs/PointCloud2";
 }
 
-/// The files of a rosbag2 folder (its .mcap or .db3 files, in name order: split parts in turn).
-std::vector<fs::path> bag_files(const fs::path& folder) {
+/// A folder's files with one of `extensions`, in name order: a split recording's parts in turn.
+std::vector<fs::path> files_in(const fs::path& folder, std::initializer_list<const char*> extensions) {
   std::vector<fs::path> files;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
     const std::string ext = entry.path().extension().string();
-    if (entry.is_regular_file() && (ext == ".mcap" || ext == ".db3")) files.push_back(entry.path());
+    if (entry.is_regular_file() && std::ranges::find(extensions, ext) != extensions.end()) files.push_back(entry.path());
   }
   std::ranges::sort(files);
-  if (files.empty()) throw Error(folder.string(), "", "has metadata.yaml but no .mcap or .db3 file");
   return files;
+}
+
+/// A folder of ROS 1 bags only (a split recording: name_0.bag, name_1.bag, ...).
+bool holds_ros1_bags(const fs::path& folder) {
+  return fs::is_directory(folder) && !files_in(folder, {".bag"}).empty() &&
+         files_in(folder, {".bag"}).size() == files_in(folder, {".bag", ".mcap", ".db3", ".bin", ".pcd", ".ply"}).size();
 }
 
 std::unique_ptr<detail::MessageStore> open_store(const fs::path& file) {
   if (file.extension() == ".db3") return std::make_unique<detail::SqliteStore>(file);
+  if (file.extension() == ".bag") return std::make_unique<detail::Ros1BagStore>(file);
   return std::make_unique<detail::McapStore>(file);
 }
 
@@ -48,20 +55,24 @@ std::string list_topics(const std::vector<RecordedTopic>& topics) {
 
 bool Recording::is_recording(const fs::path& path) {
   const std::string ext = path.extension().string();
-  if (fs::is_directory(path)) return fs::is_regular_file(path / "metadata.yaml");
-  return ext == ".mcap" || ext == ".db3";
+  if (fs::is_directory(path)) return fs::is_regular_file(path / "metadata.yaml") || holds_ros1_bags(path);
+  return ext == ".mcap" || ext == ".db3" || ext == ".bag";
 }
 
 Recording::Recording(const fs::path& path, const RecordingOptions& options) : name_(path.string()), decoder_(options.time) {
   std::vector<fs::path> files;
-  if (fs::is_directory(path)) {
+  if (fs::is_directory(path) && holds_ros1_bags(path)) {
+    files = files_in(path, {".bag"});
+    kind_ = "ROS 1 bags, " + std::to_string(files.size()) + " file" + (files.size() > 1 ? "s" : "");
+  } else if (fs::is_directory(path)) {
     if (!fs::is_regular_file(path / "metadata.yaml")) throw Error(name_, "", "is not a rosbag2 folder (no metadata.yaml)");
-    files = bag_files(path);
+    files = files_in(path, {".mcap", ".db3"});
+    if (files.empty()) throw Error(name_, "", "has metadata.yaml but no .mcap or .db3 file");
     kind_ = "rosbag2 folder, " + std::to_string(files.size()) + " file" + (files.size() > 1 ? "s" : "");
   } else {
     if (!fs::exists(path)) throw Error(name_, "", "no such file or folder");
     files = {path};
-    kind_ = path.extension() == ".db3" ? "rosbag2 SQLite" : "MCAP";
+    kind_ = path.extension() == ".db3" ? "rosbag2 SQLite" : path.extension() == ".bag" ? "ROS 1 bag" : "MCAP";
   }
   for (const fs::path& file : files) {
     parts_.push_back(open_store(file));
