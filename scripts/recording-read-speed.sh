@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # docs/benchmarks.md's reading figures: one simulated drive written by foxglove's MCAP writer
-# (plain, lz4 and zstd chunks) and as a rosbag2 SQLite file, each run through `eco run` against the
+# (plain, lz4 and zstd chunks), as a rosbag2 SQLite file and as a ROS 1 bag (Debian's rosbag), each run through `eco run` against the
 # same KITTI folder (the time to read and decode a frame against ECO's update of it, and the points
-# held, frame by frame); then the peak memory of reading FRAMES_LONG frames against FRAMES_SHORT.
+# held, frame by frame), and the ROS 1 bag read by Debian's Python rosbag; then the peak memory of reading FRAMES_LONG frames against FRAMES_SHORT.
 # usage: scripts/recording-read-speed.sh [BUILD_DIR] [OUT_DIR]   (after make test: build/npm holds the writers)
 set -euo pipefail
 build="${1:-build}" out="${2:-$build/read-speed}"
@@ -23,15 +23,17 @@ PY
 mkdir -p lidar && cp -r sim/velodyne lidar/ && cp lidar_poses.txt lidar/poses.txt
 for c in none lz4 zstd; do node "$npm/kitti_to_mcap.mjs" lidar "drive_$c.mcap" "$c" $([ "$c" = none ] && echo --cdr drive.cdrs); done
 /usr/bin/python3 "$here/tests/io/recordings/cdrs_to_db3.py" drive.cdrs drive.db3 /points
-ls -l drive_*.mcap drive.db3
+/usr/bin/python3 "$here/tests/io/recordings/kitti_to_bag.py" lidar drive.bag none > /dev/null
+ls -l drive_*.mcap drive.db3 drive.bag
 held() { grep -E '^ +[0-9]+ ' | awk '{print $1,$2,$3,$4,$5,$6,$7}'; }
 "$eco" run --data lidar --out run-kitti > kitti.txt 2>/dev/null
-for source in drive_none.mcap drive_lz4.mcap drive_zstd.mcap drive.db3; do
+for source in drive_none.mcap drive_lz4.mcap drive_zstd.mcap drive.db3 drive.bag; do
   "$eco" run --data "$source" --poses lidar_poses.txt --out "run-$source" > "$source.txt" 2>/dev/null
   same=$(diff <(held < kitti.txt) <(held < "$source.txt") > /dev/null && echo "the same points held" || echo "OTHER POINTS HELD")
   echo "$source: $(grep '^a frame:' "$source.txt"); $same as the KITTI folder"
 done
 echo "KITTI folder: $(grep '^a frame:' kitti.txt)"
+echo "drive.bag through Debian's Python rosbag and numpy: $(/usr/bin/python3 "$here/scripts/rosbag-python-read.py" drive.bag)"
 
 # peak memory: the same recording read for SHORT and LONG frames (16 beams, to keep the file small)
 rm -rf long && "$eco" simulate --out long --frames "$long" --seed 1 --beams 16 --columns 1000 > /dev/null
