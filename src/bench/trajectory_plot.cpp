@@ -31,8 +31,10 @@ void write_trajectory_plot(const std::filesystem::path& path, const std::string&
   if (!(lo_x <= hi_x)) lo_x = lo_y = 0, hi_x = hi_y = 1;
   const double span = std::max({hi_x - lo_x, hi_y - lo_y, 1.0});
   const double scale = (kSide - 2 * kMargin) / span;
-  const auto x_of = [&](double x) { return kMargin + (x - lo_x) * scale; };
-  const auto y_of = [&](double y) { return kSide - kMargin - (y - lo_y) * scale; };  // north up
+  // the path in the middle of the square: a straight drive is a line across its centre, not along an edge
+  const double mid_x = 0.5 * (lo_x + hi_x), mid_y = 0.5 * (lo_y + hi_y);
+  const auto x_of = [&](double x) { return 0.5 * kSide + (x - mid_x) * scale; };
+  const auto y_of = [&](double y) { return 0.5 * kSide - (y - mid_y) * scale; };  // north up
   const auto polyline = [&](std::span<const Eigen::Isometry3d> poses) {
     std::ostringstream points;
     for (const Eigen::Isometry3d& p : poses) points << x_of(p.translation().x()) << ',' << y_of(p.translation().y()) << ' ';

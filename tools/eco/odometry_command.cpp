@@ -52,6 +52,10 @@ std::string describe(const odometry::OdometryConfig& c) {
   return text;
 }
 
+/// A registered scan with fewer of its points on the map's planes than this is taken as lost:
+/// a tracked frame has over half (the simulator, KITTI), a lost one a few per cent.
+constexpr double kLostFit = 0.25;
+
 /// The odometry's map after frame `f`, as the viewer shows it.
 void record_frame(view::Recorder& recorder, const odometry::Odometry& odo, const odometry::FrameReport& f,
                   const std::optional<Eigen::Vector3d>& reference) {
@@ -104,8 +108,16 @@ int run(OdometryOptions o, const SourceFlags& data, const ViewFlags& viewing, co
                             frames, !reference.empty(), false};
   LiveView live(viewing, shown_folder.string(), (shown_folder / "view").string(), shown);
   const std::size_t step = std::max<std::size_t>(1, frames / 10);
+  bool lost = false;  // said once a spell (in each map's process: the flag is forked with it)
   const auto observe = [&](const std::string& map, const odometry::Odometry& odo, const odometry::FrameReport& f) {
     const std::size_t t = f.index;
+    const bool fits = !f.registered || f.source == 0 || double(f.inliers) >= kLostFit * double(f.source);
+    if (!fits && !lost) {
+      std::fprintf(stderr, "\neco odometry: %s, frame %zu: only %.0f %% of the scan lies on the map's surfaces: the track "
+                           "is likely lost here (a turn or jump the motion model missed, or too little structure)\n",
+                   map.c_str(), t, 100.0 * double(f.inliers) / double(f.source));
+    }
+    lost = !fits;
     if (t % step == step - 1 || t + 1 == frames) {
       std::fprintf(stderr, "\r%-10s frame %zu / %zu", map.c_str(), t + 1, frames);
       if (t + 1 == frames) std::fprintf(stderr, "\n");
