@@ -174,13 +174,15 @@ void bind_io(py::module_& io) {
   source.def_readonly("has_poses", &workloads::OpenedSource::has_poses, "False when every pose is the identity")
       .def_readonly("description", &workloads::OpenedSource::description, "what was opened and how it is read")
       .def_readonly("warnings", &workloads::OpenedSource::warnings, "what a user should know (a cut file, a guess)")
+      .def_readonly("pose_topics", &workloads::OpenedSource::pose_topics, "a recording's topics of poses")
       .def("__repr__", [](const workloads::OpenedSource& s) { return "Source(" + s.description + ")"; });
   io.def(
       "open",
       [](const py::object& path, const py::object& poses, const py::object& topic, const py::object& time_field,
-         const std::string& time_unit) {
+         const std::string& time_unit, const py::object& pose_topic) {
         workloads::SourceOptions options;
         options.poses = text_arg(poses, "poses");
+        options.pose_topic = text_arg(pose_topic, "pose_topic");
         options.recording.topic = text_arg(topic, "topic");
         options.recording.time.field = text_arg(time_field, "time_field");
         const std::optional<io::TimeUnit> unit = io::time_unit_named(time_unit);
@@ -191,11 +193,13 @@ void bind_io(py::module_& io) {
         return workloads::open_source(where, options);
       },
       py::arg("path"), py::arg("poses") = py::none(), py::arg("topic") = py::none(), py::arg("time_field") = py::none(),
-      py::arg("time_unit") = "auto",
+      py::arg("time_unit") = "auto", py::arg("pose_topic") = py::none(),
       R"(Opens what `path` holds as an eco.io.Source (a KITTI folder, point-cloud files, an MCAP or
 rosbag2 recording). poses: a KITTI or TUM trajectory file; topic: the recording's PointCloud2
 topic (default: the only one); time_field / time_unit: where each point's time is and in what
-unit ("auto", "s", "ms", "us", "ns"). Raises eco.io.Error naming the file, byte or topic at fault.)");
+unit ("auto", "s", "ms", "us", "ns"); pose_topic: the recording's nav_msgs/Odometry, PoseStamped or
+TransformStamped topic, interpolated at each cloud's stamp. Raises eco.io.Error naming the file,
+byte or topic at fault.)");
 
   io.def(
       "read_kitti_scan", [](const fs::path& path) { return read_cloud(path, io::read_kitti_scan); },

@@ -36,6 +36,14 @@ def test_a_recording_yields_its_clouds_as_written(expected):
         np.testing.assert_array_equal(scan.point_times, np.array(want[i]["times"]))
 
 
+def test_a_pose_topic_places_the_clouds():
+    source = eco.io.open(RECORDINGS / "posed.mcap", pose_topic="/odom")
+    assert source.has_poses and len(source) == 4
+    np.testing.assert_allclose([pose[0, 3] for pose, _ in source], [0.0, 1.0, 2.0, 3.0], atol=1e-5)
+    assert eco.io.open(RECORDINGS / "posed.mcap").pose_topics == ["/odom (nav_msgs/msg/Odometry)",
+                                                                  "/pose (geometry_msgs/msg/PoseStamped)"]
+
+
 def test_topic_and_time_options(expected):
     rear = eco.io.open(RECORDINGS / "two_lidars.mcap", topic="/rear/points")
     assert len(rear) == 2

@@ -62,6 +62,7 @@ json bench_options_json(const BenchOptions& o) {
   if (o.data) out["data"] = std::filesystem::weakly_canonical(*o.data).string();  // --config works from anywhere
   if (!o.source.poses.empty()) out["poses"] = std::filesystem::weakly_canonical(o.source.poses).string();
   if (!o.source.recording.topic.empty()) out["topic"] = o.source.recording.topic;
+  if (!o.source.pose_topic.empty()) out["pose-topic"] = o.source.pose_topic;
   if (!o.source.recording.time.field.empty()) out["time-field"] = o.source.recording.time.field;
   if (o.source.recording.time.unit != io::TimeUnit::Auto) out["time-unit"] = io::name_of(o.source.recording.time.unit);
   return out;

@@ -40,16 +40,26 @@ OpenedSource open_kitti(const fs::path& folder, const SourceOptions& options) {
 
 OpenedSource open_recording(const fs::path& path, const SourceOptions& options) {
   io::Recording recording(path, options.recording);
+  if (!options.poses.empty() && !options.pose_topic.empty()) {
+    throw io::Error(path.string(), "", "--poses and --pose-topic both give poses: give one");
+  }
   std::optional<io::PoseTrack> track = track_of(options);
+  std::string placed;
+  if (!options.pose_topic.empty()) track = recording.pose_track(options.pose_topic, &placed);
   OpenedSource out;
   out.has_poses = track.has_value();
   if (recording.size() > 0) (void)recording.read(0);  // the first cloud fixes how its points are read
   out.description = recording.describe() + (recording.layout() ? "; " + recording.layout()->describe() : "");
   if (!recording.damage().empty()) out.warnings.push_back(recording.damage());
+  if (!placed.empty()) {
+    out.warnings.push_back("the poses of " + placed + " on " + options.pose_topic +
+                           " are taken as the LiDAR's: no extrinsic (TF) between them is applied");
+  }
+  for (const io::RecordedTopic& t : recording.pose_topics()) out.pose_topics.push_back(t.name + " (" + t.type + ")");
   auto frames = std::make_unique<RecordingWorkload>(std::move(recording), std::move(track));
   if (frames->outside_poses() > 0) {
-    out.warnings.push_back(std::to_string(frames->outside_poses()) + " clouds lie outside the span of " + options.poses +
-                           " and are left out");
+    out.warnings.push_back(std::to_string(frames->outside_poses()) + " clouds lie outside the span of " +
+                           (options.poses.empty() ? options.pose_topic : options.poses) + " and are left out");
   }
   out.frames = std::move(frames);
   return out;

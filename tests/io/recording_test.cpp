@@ -5,12 +5,14 @@
 
 #include <eco/io/error.hpp>
 #include <eco/io/recording.hpp>
+#include <eco/workloads/scan_source.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <filesystem>
@@ -251,6 +253,66 @@ TEST_F(RecordingTest, Ros1TopicsAreListedAndDamageNamed) {
   const std::string unindexed = error_of(cut);
   EXPECT_NE(unindexed.find("cut.bag: "), std::string::npos) << unindexed;
   EXPECT_NE(error_of(damaged_copy("ouster_none.mcap", "not_a.bag", [](std::string&) {})).find("not_a.bag: "), std::string::npos);
+}
+
+TEST_F(RecordingTest, APoseTopicPlacesEachCloudAtItsStamp) {
+  for (const char* topic : {"/odom", "/pose"}) {  // nav_msgs/msg/Odometry, geometry_msgs/msg/PoseStamped
+    SCOPED_TRACE(topic);
+    Recording bag(recordings() / "posed.mcap", {});
+    ASSERT_EQ(bag.pose_topics().size(), 2u);
+    std::string frames;
+    const PoseTrack track = bag.pose_track(topic, &frames);
+    ASSERT_EQ(track.poses.size(), 6u);
+    EXPECT_EQ(frames, std::string(topic) == "/odom" ? "lidar in odom" : "the pose in odom");
+    EXPECT_DOUBLE_EQ(track.times[0], 1700000000.0 - 0.05);
+    // the writer's poses, half a frame off the clouds': x = 10 m/s × t, yaw = 0.5 rad/s × t
+    workloads::SourceOptions options;
+    options.pose_topic = topic;
+    const workloads::OpenedSource source = workloads::open_source(recordings() / "posed.mcap", options);
+    ASSERT_TRUE(source.has_poses);
+    ASSERT_EQ(source.size(), 4u);
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Eigen::Isometry3d pose = source.frames->pose(k);
+      const double t = 0.1 * double(k);
+      EXPECT_NEAR(pose.translation().x(), 10.0 * t, 1e-5) << k;  // seconds since 1970 in a double: 0.24 µs steps
+      EXPECT_NEAR(std::atan2(pose.linear()(1, 0), pose.linear()(0, 0)), 0.5 * t, 1e-6) << k;
+    }
+    ASSERT_FALSE(source.warnings.empty());
+    EXPECT_NE(source.warnings.back().find("are taken as the LiDAR's: no extrinsic"), std::string::npos) << source.warnings.back();
+  }
+  // a ROS 1 bag's nav_msgs/Odometry, at the clouds' own stamps: x = k
+  workloads::SourceOptions options;
+  options.recording.topic = "/front/points";
+  options.pose_topic = "/odom";
+  const workloads::OpenedSource front = workloads::open_source(recordings() / "two_lidars.bag", options);
+  ASSERT_EQ(front.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(front.frames->pose(k).translation().x(), double(k), 1e-9) << k;
+}
+
+TEST_F(RecordingTest, APoseTopicThatIsNoneIsRefusedByName) {
+  Recording bag(recordings() / "posed.mcap", {});
+  const auto refusal = [&](const std::string& topic) {
+    try {
+      (void)bag.pose_track(topic);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refusal("/points").find("topic /points holds sensor_msgs/msg/PointCloud2, not nav_msgs/Odometry"), std::string::npos);
+  EXPECT_NE(refusal("/tf").find("has no topic /tf; its topics:"), std::string::npos);
+  workloads::SourceOptions both;
+  both.pose_topic = "/odom";
+  both.poses = (recordings() / "expected.json").string();
+  try {
+    (void)workloads::open_source(recordings() / "posed.mcap", both);
+    ADD_FAILURE() << "--poses and --pose-topic were both taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--poses and --pose-topic both give poses"), std::string::npos) << e.what();
+  }
+  const workloads::OpenedSource unposed = workloads::open_source(recordings() / "posed.mcap", {});
+  EXPECT_FALSE(unposed.has_poses);
+  EXPECT_EQ(unposed.pose_topics, (std::vector<std::string>{"/odom (nav_msgs/msg/Odometry)", "/pose (geometry_msgs/msg/PoseStamped)"}));
 }
 
 }  // namespace

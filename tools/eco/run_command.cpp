@@ -130,8 +130,11 @@ std::unique_ptr<workloads::Workload> posed_frames(const SourceFlags& source) {
   workloads::OpenedSource opened = source.open();
   std::printf("%s\n", opened.description.c_str());
   if (!opened.has_poses) {
+    std::string topics;
+    for (const std::string& t : opened.pose_topics) topics += (topics.empty() ? "" : ", ") + t;
     throw std::invalid_argument(source.data + " has no poses, and eco run places each scan by its pose: give --poses FILE "
-                                "(KITTI or TUM), or let eco odometry --data " + source.data + " estimate them");
+                                "(KITTI or TUM)" + (topics.empty() ? "" : ", --pose-topic (it has " + topics + ")") +
+                                ", or let eco odometry --data " + source.data + " estimate them");
   }
   return std::move(opened.frames);
 }

@@ -16,6 +16,9 @@ SourceFlags::SourceFlags(CLI::App& cmd, const std::string& without_data) {
                  "poses from this file (KITTI: 12 numbers a line, a scan a line; TUM: t x y z qx qy qz qw, at the "
                  "clouds' stamps) instead of the data's own");
   cmd.add_option("--topic", options.recording.topic, "the recording's PointCloud2 topic (default: the only one)");
+  cmd.add_option(both_spellings("--pose-topic"), options.pose_topic,
+                 "poses from the recording's nav_msgs/Odometry, geometry_msgs/PoseStamped or TransformStamped topic, "
+                 "at each cloud's stamp (taken as the LiDAR's)");
   cmd.add_option(both_spellings("--time-field"), options.recording.time.field,
                  "the point field holding each point's time (default: the first of t, time, timestamp, timestamps, "
                  "offset_time, stamps)");
@@ -40,6 +43,7 @@ void SourceFlags::add_to(nlohmann::json& out) const {
   if (!data.empty()) out["data"] = std::filesystem::weakly_canonical(data).string();
   if (!options.poses.empty()) out["poses"] = std::filesystem::weakly_canonical(options.poses).string();
   if (!options.recording.topic.empty()) out["topic"] = options.recording.topic;
+  if (!options.pose_topic.empty()) out["pose-topic"] = options.pose_topic;
   if (!options.recording.time.field.empty()) out["time-field"] = options.recording.time.field;
   if (time_unit != "auto") out["time-unit"] = time_unit;
 }

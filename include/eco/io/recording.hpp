@@ -11,6 +11,7 @@
 ///   }
 
 #include <eco/io/point_cloud2.hpp>
+#include <eco/io/pose_file.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -71,6 +72,14 @@ class Recording {
   [[nodiscard]] const std::string& damage() const { return damage_; }
   /// "path (MCAP), topic /points: 120 clouds"
   [[nodiscard]] std::string describe() const;
+
+  /// The topics whose messages hold poses (nav_msgs/Odometry, geometry_msgs/PoseStamped,
+  /// geometry_msgs/TransformStamped).
+  [[nodiscard]] std::vector<RecordedTopic> pose_topics() const;
+  /// Every pose on `topic`, in stamp order, as a timed trajectory (at the messages' header
+  /// stamps); `frames`, when given, gets what they place ("base_link in odom"). Throws
+  /// eco::io::Error naming the topic when it is missing, holds no pose type, or is empty.
+  [[nodiscard]] PoseTrack pose_track(const std::string& topic, std::string* frames = nullptr);
 
  private:
   [[nodiscard]] PointCloud2 parsed(std::size_t index, const std::string& source);

@@ -29,6 +29,10 @@ struct SourceOptions {
   /// For a KITTI folder it replaces the folder's poses.txt.
   std::string poses;
   io::RecordingOptions recording;  ///< --topic, --time-field, --time-unit
+  /// A recording's topic of poses (nav_msgs/Odometry, geometry_msgs/PoseStamped or
+  /// TransformStamped), interpolated at each cloud's stamp as a TUM file would be. The poses are
+  /// taken as the LiDAR's: no extrinsic (TF) is applied.
+  std::string pose_topic;
 };
 
 struct OpenedSource {
@@ -37,6 +41,7 @@ struct OpenedSource {
   std::optional<Eigen::Isometry3d> velo_to_cam;  ///< KITTI's camera-frame poses were turned into the LiDAR's
   std::string description;                        ///< one line: what was opened, and how it is read
   std::vector<std::string> warnings;              ///< what the user should know (a cut file, a guess)
+  std::vector<std::string> pose_topics;           ///< a recording's topics of poses, for --pose-topic
 
   [[nodiscard]] std::size_t size() const { return frames ? frames->size() : 0; }
 };

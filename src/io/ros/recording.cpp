@@ -1,6 +1,7 @@
 #include <eco/io/recording.hpp>
 
 #include "io/ros/mcap_store.hpp"
+#include "io/ros/pose_messages.hpp"
 #include "io/ros/ros1_bag_store.hpp"
 #include "io/ros/sqlite_store.hpp"
 
@@ -143,6 +144,42 @@ std::int64_t Recording::stamp_ns(std::size_t index) {
 
 std::string Recording::describe() const {
   return name_ + " (" + kind_ + "), topic " + topic_ + ": " + std::to_string(clouds_.size()) + " clouds";
+}
+
+std::vector<RecordedTopic> Recording::pose_topics() const {
+  std::vector<RecordedTopic> out;
+  for (const RecordedTopic& t : topics_) {
+    if (detail::is_pose_type(t.type)) out.push_back(t);
+  }
+  return out;
+}
+
+PoseTrack Recording::pose_track(const std::string& topic, std::string* frames) {
+  const auto it = std::ranges::find(topics_, topic, &RecordedTopic::name);
+  if (it == topics_.end()) throw Error(name_, "", "has no topic " + topic + "; its topics:\n" + list_topics(topics_));
+  if (!detail::is_pose_type(it->type)) {
+    throw Error(name_, "", "topic " + topic + " holds " + it->type +
+                               ", not nav_msgs/Odometry, geometry_msgs/PoseStamped or geometry_msgs/TransformStamped");
+  }
+  std::vector<detail::StampedPose> poses;
+  for (const auto& part : parts_) {
+    const detail::Encoding encoding = part->encoding(topic);
+    std::size_t n = 0;
+    for (const detail::StoredMessage& m : part->index(topic)) {
+      const std::string source = name_ + ", " + topic + " message " + std::to_string(n++);
+      poses.push_back(detail::parse_pose_message(part->read(m), encoding, it->type, source));
+    }
+  }
+  if (poses.empty()) throw Error(name_, "", "topic " + topic + " holds no message");
+  std::ranges::stable_sort(poses, {}, &detail::StampedPose::stamp_ns);
+  if (frames) *frames = (poses.front().child_frame_id.empty() ? std::string("the pose") : poses.front().child_frame_id) +
+                        " in " + poses.front().frame_id;
+  PoseTrack track;
+  for (const detail::StampedPose& p : poses) {
+    track.times.push_back(double(p.stamp_ns) * 1e-9);
+    track.poses.push_back(p.pose);
+  }
+  return track;
 }
 
 }  // namespace eco::io

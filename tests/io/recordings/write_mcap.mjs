@@ -55,6 +55,55 @@ MSG: geometry_msgs/Point
 float64 x
 float64 y
 float64 z`;
+const TIME_AND_POSE = `
+================================================================================
+MSG: std_msgs/Header
+builtin_interfaces/Time stamp
+string frame_id
+================================================================================
+MSG: builtin_interfaces/Time
+int32 sec
+uint32 nanosec
+================================================================================
+MSG: geometry_msgs/Pose
+Point position
+Quaternion orientation
+================================================================================
+MSG: geometry_msgs/Point
+float64 x
+float64 y
+float64 z
+================================================================================
+MSG: geometry_msgs/Quaternion
+float64 x
+float64 y
+float64 z
+float64 w`;
+const ODOMETRY = `std_msgs/Header header
+string child_frame_id
+geometry_msgs/PoseWithCovariance pose
+geometry_msgs/TwistWithCovariance twist
+================================================================================
+MSG: geometry_msgs/PoseWithCovariance
+Pose pose
+float64[36] covariance
+================================================================================
+MSG: geometry_msgs/TwistWithCovariance
+Twist twist
+float64[36] covariance
+================================================================================
+MSG: geometry_msgs/Twist
+Vector3 linear
+Vector3 angular
+================================================================================
+MSG: geometry_msgs/Vector3
+float64 x
+float64 y
+float64 z` + TIME_AND_POSE;
+const POSE_STAMPED = `std_msgs/Header header
+geometry_msgs/Pose pose` + TIME_AND_POSE;
+const odometryWriter = new MessageWriter(parse(ODOMETRY, { ros2: true }));
+const poseStampedWriter = new MessageWriter(parse(POSE_STAMPED, { ros2: true }));
 const cloudWriter = new MessageWriter(parse(POINT_CLOUD2, { ros2: true }));
 const pointWriter = new MessageWriter(parse(ODOMETRY_SCHEMA, { ros2: true }));
 
@@ -195,7 +244,26 @@ async function writeMcap(name, { topics, compression = "zstd", chunked = true, c
       messages.push({ channelId: channel, sequence: k, logTime: c.stampNs + 1000n, publishTime: c.stampNs, data: c.bytes });
     }
   }
-  for (const e of extra) {
+  for (const e of extra.filter((x) => x.poses)) {
+    // poses half a frame off the clouds': x = 10 m/s × t, a yaw of 0.5 rad/s × t (interpolated at a cloud's stamp)
+    const isOdometry = e.type === "nav_msgs/msg/Odometry";
+    const schema = await writer.registerSchema({ name: e.type, encoding: "ros2msg",
+                                                 data: new TextEncoder().encode(isOdometry ? ODOMETRY : POSE_STAMPED) });
+    const channel = await writer.registerChannel({ topic: e.topic, schemaId: schema, messageEncoding: "cdr", metadata: new Map() });
+    for (let k = 0; k < e.count; k++) {
+      const tNs = BigInt(STAMP0) * 1000000000n + BigInt(k * PERIOD_NS) - 50000000n;
+      const t = Number(tNs - BigInt(STAMP0) * 1000000000n) * 1e-9;
+      const header = { stamp: { sec: Number(tNs / 1000000000n), nanosec: Number(tNs % 1000000000n) }, frame_id: "odom" };
+      const pose = { position: { x: 10 * t, y: 0, z: 0 }, orientation: { x: 0, y: 0, z: Math.sin(0.25 * t), w: Math.cos(0.25 * t) } };
+      const data = isOdometry
+        ? odometryWriter.writeMessage({ header, child_frame_id: "lidar", pose: { pose, covariance: new Float64Array(36) },
+                                        twist: { twist: { linear: { x: 0, y: 0, z: 0 }, angular: { x: 0, y: 0, z: 0 } },
+                                                 covariance: new Float64Array(36) } })
+        : poseStampedWriter.writeMessage({ header, pose });
+      messages.push({ channelId: channel, sequence: k, logTime: tNs, publishTime: tNs, data });
+    }
+  }
+  for (const e of extra.filter((x) => !x.poses)) {
     const schema = await writer.registerSchema({ name: e.type, encoding: "ros2msg", data: new TextEncoder().encode(ODOMETRY_SCHEMA) });
     const channel = await writer.registerChannel({ topic: e.topic, schemaId: schema, messageEncoding: "cdr", metadata: new Map() });
     for (let k = 0; k < e.count; k++) {
@@ -227,6 +295,10 @@ expected["two_lidars.mcap"] = await writeMcap("two_lidars.mcap", {
 expected["no_clouds.mcap"] = await writeMcap("no_clouds.mcap", { topics: [],
   extra: [{ topic: "/odom", type: "geometry_msgs/msg/Point", count: 3 }] });
 expected["empty.mcap"] = await writeMcap("empty.mcap", { topics: [] });
+expected["posed.mcap"] = await writeMcap("posed.mcap", {
+  topics: [{ topic: "/points", layout: "velodyne", clouds: 4, points: 300 }],
+  extra: [{ topic: "/odom", type: "nav_msgs/msg/Odometry", count: 6, poses: true },
+          { topic: "/pose", type: "geometry_msgs/msg/PoseStamped", count: 6, poses: true }] });
 
 // the raw CDR messages of one topic, for the rosbag2 SQLite file write_db3.py makes
 const db3 = [];
