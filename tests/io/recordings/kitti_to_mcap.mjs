@@ -7,55 +7,19 @@
 // for a rosbag2 SQLite file to be made of them.
 
 import { McapWriter } from "@mcap/core";
-import { parse } from "@foxglove/rosmsg";
-import { MessageWriter } from "@foxglove/rosmsg2-serialization";
-import * as zstd from "@foxglove/wasm-zstd";
-import lz4 from "lz4js";
 import { open } from "node:fs/promises";
 import { readdirSync, readFileSync, openSync, writeSync, closeSync } from "node:fs";
+import { COMPRESSORS, FileWritable, POINT_CLOUD2, cdrWriter } from "./ros2_messages.mjs";
 
 const [dir, out, compression = "zstd"] = process.argv.slice(2);
 const cdrAt = process.argv.indexOf("--cdr");
 const cdr = cdrAt > 0 ? openSync(process.argv[cdrAt + 1], "w") : null;
-const COMPRESSORS = {
-  none: undefined,
-  lz4: (data) => ({ compression: "lz4", compressedData: lz4.compress(data) }),
-  zstd: (data) => ({ compression: "zstd", compressedData: zstd.compress(data, 3) }),
-};
-await zstd.isLoaded;
-const definition = `std_msgs/Header header
-uint32 height
-uint32 width
-sensor_msgs/PointField[] fields
-bool is_bigendian
-uint32 point_step
-uint32 row_step
-uint8[] data
-bool is_dense
-================================================================================
-MSG: std_msgs/Header
-builtin_interfaces/Time stamp
-string frame_id
-================================================================================
-MSG: builtin_interfaces/Time
-int32 sec
-uint32 nanosec
-================================================================================
-MSG: sensor_msgs/PointField
-string name
-uint32 offset
-uint8 datatype
-uint32 count`;
-const writer = new MessageWriter(parse(definition, { ros2: true }));
+const writer = cdrWriter(POINT_CLOUD2);
 const handle = await open(out, "w");
-let size = 0n;
-const mcap = new McapWriter({
-  writable: { write: async (b) => { await handle.write(b); size += BigInt(b.byteLength); }, position: () => size },
-  compressChunk: COMPRESSORS[compression],
-});
+const mcap = new McapWriter({ writable: new FileWritable(handle), compressChunk: COMPRESSORS[compression] });
 await mcap.start({ profile: "ros2", library: "eco-tests kitti_to_mcap" });
 const schema = await mcap.registerSchema({ name: "sensor_msgs/msg/PointCloud2", encoding: "ros2msg",
-                                           data: new TextEncoder().encode(definition) });
+                                           data: new TextEncoder().encode(POINT_CLOUD2) });
 const channel = await mcap.registerChannel({ topic: "/points", schemaId: schema, messageEncoding: "cdr", metadata: new Map() });
 const scans = readdirSync(`${dir}/velodyne`).filter((f) => f.endsWith(".bin")).sort();
 for (const [k, file] of scans.entries()) {

@@ -6,106 +6,16 @@
 // usage: node write_mcap.mjs OUT_DIR
 
 import { McapWriter } from "@mcap/core";
-import { parse } from "@foxglove/rosmsg";
-import { MessageWriter } from "@foxglove/rosmsg2-serialization";
-import * as zstd from "@foxglove/wasm-zstd";
-import lz4 from "lz4js";
 import { open } from "node:fs/promises";
 import { writeFileSync, mkdirSync } from "node:fs";
+import { COMPRESSORS, FileWritable, ODOMETRY, POINT, POINT_CLOUD2, POSE_STAMPED, cdrWriter } from "./ros2_messages.mjs";
 
 const OUT = process.argv[2];
 mkdirSync(OUT, { recursive: true });
-await zstd.isLoaded;
-
-const POINT_CLOUD2 = `
-std_msgs/Header header
-uint32 height
-uint32 width
-sensor_msgs/PointField[] fields
-bool is_bigendian
-uint32 point_step
-uint32 row_step
-uint8[] data
-bool is_dense
-================================================================================
-MSG: std_msgs/Header
-builtin_interfaces/Time stamp
-string frame_id
-================================================================================
-MSG: builtin_interfaces/Time
-int32 sec
-uint32 nanosec
-================================================================================
-MSG: sensor_msgs/PointField
-uint8 INT8=1
-uint8 UINT8=2
-uint8 INT16=3
-uint16 UINT16=4
-uint8 INT32=5
-uint8 UINT32=6
-uint8 FLOAT32=7
-uint8 FLOAT64=8
-string name
-uint32 offset
-uint8 datatype
-uint32 count`;
-const ODOMETRY_SCHEMA = `geometry_msgs/Point position
-================================================================================
-MSG: geometry_msgs/Point
-float64 x
-float64 y
-float64 z`;
-const TIME_AND_POSE = `
-================================================================================
-MSG: std_msgs/Header
-builtin_interfaces/Time stamp
-string frame_id
-================================================================================
-MSG: builtin_interfaces/Time
-int32 sec
-uint32 nanosec
-================================================================================
-MSG: geometry_msgs/Pose
-Point position
-Quaternion orientation
-================================================================================
-MSG: geometry_msgs/Point
-float64 x
-float64 y
-float64 z
-================================================================================
-MSG: geometry_msgs/Quaternion
-float64 x
-float64 y
-float64 z
-float64 w`;
-const ODOMETRY = `std_msgs/Header header
-string child_frame_id
-geometry_msgs/PoseWithCovariance pose
-geometry_msgs/TwistWithCovariance twist
-================================================================================
-MSG: geometry_msgs/PoseWithCovariance
-Pose pose
-float64[36] covariance
-================================================================================
-MSG: geometry_msgs/TwistWithCovariance
-Twist twist
-float64[36] covariance
-================================================================================
-MSG: geometry_msgs/Twist
-Vector3 linear
-Vector3 angular
-================================================================================
-MSG: geometry_msgs/Vector3
-float64 x
-float64 y
-float64 z` + TIME_AND_POSE;
-const POSE_STAMPED = `std_msgs/Header header
-geometry_msgs/Pose pose` + TIME_AND_POSE;
-const odometryWriter = new MessageWriter(parse(ODOMETRY, { ros2: true }));
-const poseStampedWriter = new MessageWriter(parse(POSE_STAMPED, { ros2: true }));
-const cloudWriter = new MessageWriter(parse(POINT_CLOUD2, { ros2: true }));
-const pointWriter = new MessageWriter(parse(ODOMETRY_SCHEMA, { ros2: true }));
+const cloudWriter = cdrWriter(POINT_CLOUD2);
+const pointWriter = cdrWriter(POINT);
+const odometryWriter = cdrWriter(ODOMETRY);
+const poseStampedWriter = cdrWriter(POSE_STAMPED);
 
 const T = { INT8: 1, UINT8: 2, INT16: 3, UINT16: 4, INT32: 5, UINT32: 6, FLOAT32: 7, FLOAT64: 8 };
 const SIZE = { 1: 1, 2: 1, 3: 2, 4: 2, 5: 4, 6: 4, 7: 4, 8: 8 };
@@ -213,18 +123,6 @@ function cloud(layoutName, k, points, height = 1) {
   return { bytes: cloudWriter.writeMessage(message), message, expected, stampNs };
 }
 
-class FileWritable {
-  constructor(handle) { this.handle = handle; this.size = 0n; }
-  async write(buffer) { await this.handle.write(buffer); this.size += BigInt(buffer.byteLength); }
-  position() { return this.size; }
-}
-
-const COMPRESSORS = {
-  none: undefined,
-  lz4: (data) => ({ compression: "lz4", compressedData: lz4.compress(data) }),
-  zstd: (data) => ({ compression: "zstd", compressedData: zstd.compress(data, 3) }),
-};
-
 // topics: [{ topic, layout, clouds, points, height }] and extra topics; returns the expected clouds
 async function writeMcap(name, { topics, compression = "zstd", chunked = true, chunkSize = 64 * 1024, extra = [] }) {
   const handle = await open(`${OUT}/${name}`, "w");
@@ -264,7 +162,7 @@ async function writeMcap(name, { topics, compression = "zstd", chunked = true, c
     }
   }
   for (const e of extra.filter((x) => !x.poses)) {
-    const schema = await writer.registerSchema({ name: e.type, encoding: "ros2msg", data: new TextEncoder().encode(ODOMETRY_SCHEMA) });
+    const schema = await writer.registerSchema({ name: e.type, encoding: "ros2msg", data: new TextEncoder().encode(POINT) });
     const channel = await writer.registerChannel({ topic: e.topic, schemaId: schema, messageEncoding: "cdr", metadata: new Map() });
     for (let k = 0; k < e.count; k++) {
       messages.push({ channelId: channel, sequence: k, logTime: BigInt(STAMP0) * 1000000000n + BigInt(k * PERIOD_NS) + 500n,

@@ -11,7 +11,7 @@ if ! cmp -s "$here/package.json" "$npm_dir/package.json" || [ ! -d "$npm_dir/nod
   cp "$here/package.json" "$npm_dir/package.json"
   (cd "$npm_dir" && npm install --no-audit --no-fund --loglevel=error)
 fi
-cp "$here/write_mcap.mjs" "$here/kitti_to_mcap.mjs" "$npm_dir/"
+cp "$here/write_mcap.mjs" "$here/kitti_to_mcap.mjs" "$here/ros2_messages.mjs" "$npm_dir/"
 node "$npm_dir/write_mcap.mjs" "$out"
 /usr/bin/python3 "$here/write_db3.py" "$out"
 /usr/bin/python3 "$here/write_ros1_bags.py" "$out"
