@@ -3,6 +3,7 @@
 #include "bench/sim_workload.hpp"
 
 #include <eco/io/error.hpp>
+#include <eco/workloads/frame_window.hpp>
 #include <eco/workloads/static_map.hpp>
 #include <eco/workloads/static_workload.hpp>
 
@@ -23,8 +24,8 @@ OpenedWorkload open_workload(const BenchOptions& options, const std::function<vo
   } else {
     sim::SimConfig sim;
     sim.seed = options.seed;
-    sim.frames = options.sim_frames;
-    scans = std::make_unique<SimWorkload>(sim);
+    sim.frames = options.source.start + options.sim_frames;
+    scans = workloads::frame_window(std::make_unique<SimWorkload>(sim), options.source.start);
     out.source = "simulator (seed " + std::to_string(sim.seed) + ", " + std::to_string(sim.frames) + " frames)";
   }
   if (options.workload == WorkloadKind::Dynamic) {

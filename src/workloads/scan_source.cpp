@@ -7,6 +7,7 @@
 #include <eco/io/kitti_sequence.hpp>
 #include <eco/io/pose_file.hpp>
 #include <eco/workloads/dynamic_workload.hpp>
+#include <eco/workloads/frame_window.hpp>
 
 namespace eco::workloads {
 namespace {
@@ -67,7 +68,10 @@ OpenedSource open_recording(const fs::path& path, const SourceOptions& options) 
 
 }  // namespace
 
-OpenedSource open_source(const fs::path& path, const SourceOptions& options) {
+namespace {
+
+/// What `path` holds, every frame of it.
+OpenedSource open_by_kind(const fs::path& path, const SourceOptions& options) {
   if (!fs::exists(path)) throw io::Error(path.string(), "", "no such file or folder");
   if (io::Recording::is_recording(path)) return open_recording(path, options);
   if (fs::is_directory(path / "velodyne")) return open_kitti(path, options);
@@ -82,6 +86,14 @@ OpenedSource open_source(const fs::path& path, const SourceOptions& options) {
   throw io::Error(path.string(), "", "is none of what --data reads: a KITTI-layout folder (velodyne/), a folder of .pcd, "
                                      ".ply or .bin files, an .mcap, .db3 or .bag file, a rosbag2 folder (metadata.yaml) "
                                      "or a folder of ROS 1 bags");
+}
+
+}  // namespace
+
+OpenedSource open_source(const fs::path& path, const SourceOptions& options) {
+  OpenedSource opened = open_by_kind(path, options);
+  opened.frames = frame_window(std::move(opened.frames), options.start);
+  return opened;
 }
 
 }  // namespace eco::workloads

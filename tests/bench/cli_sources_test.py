@@ -77,6 +77,17 @@ for source in ["drive.mcap", "drive.bag", "bins", "pcds"]:
 check("drive.mcap (MCAP), topic /points: 8 clouds; no per-point time; intensity: intensity"
       in eco("run", "--data", "drive.mcap", "--poses", "lidar_poses.txt", "--frames", "1").stdout, "the recording's first line")
 
+# --start: every source begins at the frame asked for, the simulator's drive too
+for source in ["kitti", "drive.mcap", "drive.bag"]:
+    late = eco("run", "--data", source, "--poses", "lidar_poses.txt", "--start", "3", "--frames", "4", "--out", "run-late")
+    scans = [row[1] for row in held_rows(late.stdout)]
+    check(scans == [row[1] for row in rows[3:7]], f"{source} --start 3: scans {scans}, not those of frames 3-6")
+check("--start 8 is past the last of the 8 frames" in eco("run", "--data", "kitti", "--start", "8", ok=False).stderr,
+      "--start past the end")
+simulated = [row[1] for row in held_rows(eco("run", "--frames", "6", "--out", "run-sim").stdout)]
+late_sim = [row[1] for row in held_rows(eco("run", "--start", "2", "--frames", "4", "--out", "run-sim-late").stdout)]
+check(late_sim == simulated[2:6], f"the simulator from frame 2: {late_sim}, not {simulated[2:6]}")
+
 # a KITTI folder whose poses are kept elsewhere (as KITTI's own are)
 os.makedirs(path("kitti-bare"))
 shutil.copytree(path("kitti", "velodyne"), path("kitti-bare", "velodyne"))

@@ -74,11 +74,11 @@ int run(OdometryOptions o, const SourceFlags& data, const ViewFlags& viewing, co
   if (data.data.empty()) {
     sim::SimConfig sim;
     sim.seed = o.seed;
-    sim.frames = o.frames > 0 ? o.frames : 300;
+    sim.frames = data.options.start + (o.frames > 0 ? o.frames : 300);
     sim.speed = o.speed;
     sim.lidar.rolling_sweep = o.rolling_sweep;
-    scans = std::make_unique<bench::SimWorkload>(sim);
-    for (std::size_t t = 0; t < sim.frames; ++t) reference.push_back(scans->pose(t));
+    scans = data.from_start(std::make_unique<bench::SimWorkload>(sim));
+    for (std::size_t t = 0; t < scans->size(); ++t) reference.push_back(scans->pose(t));
     source = "the simulated drive (seed " + std::to_string(o.seed) + (o.rolling_sweep ? ", rolling sweep" : "") + ")";
   } else {
     workloads::OpenedSource opened = data.open();

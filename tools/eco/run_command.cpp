@@ -145,8 +145,8 @@ int run(const RunOptions& o, const SourceFlags& source, const ViewFlags& viewing
   if (data.empty()) {
     sim::SimConfig sim;
     sim.seed = o.seed;
-    sim.frames = o.frames > 0 ? o.frames : 100;
-    scans = std::make_unique<bench::SimWorkload>(sim);
+    sim.frames = source.options.start + (o.frames > 0 ? o.frames : 100);
+    scans = source.from_start(std::make_unique<bench::SimWorkload>(sim));
   } else {
     scans = posed_frames(source);
   }

@@ -2,6 +2,7 @@
 #include "spellings.hpp"
 
 #include <eco/io/error.hpp>
+#include <eco/workloads/frame_window.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,8 @@ SourceFlags::SourceFlags(CLI::App& cmd, const std::string& without_data) {
   cmd.add_option("--poses", options.poses,
                  "poses from this file (KITTI: 12 numbers a line, a scan a line; TUM: t x y z qx qy qz qw, at the "
                  "clouds' stamps) instead of the data's own");
+  cmd.add_option("--start", options.start, "the first frame taken (0: the first): the run begins there, on any source")
+      ->capture_default_str();
   cmd.add_option("--topic", options.recording.topic, "the recording's PointCloud2 topic (default: the only one)");
   cmd.add_option(both_spellings("--pose-topic"), options.pose_topic,
                  "poses from the recording's nav_msgs/Odometry, geometry_msgs/PoseStamped or TransformStamped topic, "
@@ -33,6 +36,10 @@ workloads::SourceOptions SourceFlags::resolved() const {
   return read;
 }
 
+std::unique_ptr<workloads::Workload> SourceFlags::from_start(std::unique_ptr<workloads::Workload> frames) const {
+  return workloads::frame_window(std::move(frames), options.start);
+}
+
 workloads::OpenedSource SourceFlags::open() const {
   workloads::OpenedSource source = workloads::open_source(data, resolved());
   for (const std::string& warning : source.warnings) std::fprintf(stderr, "eco: warning: %s\n", warning.c_str());
@@ -41,6 +48,7 @@ workloads::OpenedSource SourceFlags::open() const {
 
 void SourceFlags::add_to(nlohmann::json& out) const {
   if (!data.empty()) out["data"] = std::filesystem::weakly_canonical(data).string();
+  if (options.start > 0) out["start"] = options.start;
   if (!options.poses.empty()) out["poses"] = std::filesystem::weakly_canonical(options.poses).string();
   if (!options.recording.topic.empty()) out["topic"] = options.recording.topic;
   if (!options.pose_topic.empty()) out["pose-topic"] = options.pose_topic;

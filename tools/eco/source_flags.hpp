@@ -21,8 +21,10 @@ struct SourceFlags {
 
   /// The options with --time-unit applied.
   [[nodiscard]] workloads::SourceOptions resolved() const;
-  /// Opens --data (which must be given), its warnings printed on stderr.
+  /// Opens --data (which must be given) from --start on, its warnings printed on stderr.
   [[nodiscard]] workloads::OpenedSource open() const;
+  /// `frames` from --start on (the simulator's drive, which is made without --data).
+  [[nodiscard]] std::unique_ptr<workloads::Workload> from_start(std::unique_ptr<workloads::Workload> frames) const;
   /// The flags given, keyed as config.json keys options (paths made absolute).
   void add_to(nlohmann::json& options) const;
 };

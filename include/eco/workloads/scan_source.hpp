@@ -33,6 +33,7 @@ struct SourceOptions {
   /// TransformStamped), interpolated at each cloud's stamp as a TUM file would be. The poses are
   /// taken as the LiDAR's: no extrinsic (TF) is applied.
   std::string pose_topic;
+  std::size_t start = 0;  ///< the first frame taken (`--start`): the frames are numbered from it
 };
 
 struct OpenedSource {
