@@ -18,7 +18,6 @@ class SqliteStore final : public MessageStore {
  public:
   /// Throws eco::io::Error naming the file when it is not a rosbag2 database.
   explicit SqliteStore(const std::filesystem::path& file);
-  ~SqliteStore() override;
 
   [[nodiscard]] std::vector<TopicInfo> topics() const override { return topics_; }
   [[nodiscard]] std::vector<StoredMessage> index(const std::string& topic) const override;
@@ -28,9 +27,14 @@ class SqliteStore final : public MessageStore {
  private:
   [[noreturn]] void fail(const std::string& what) const;
 
+  // closed however the constructor ends: a file refused half-way open leaks nothing
+  struct Close {
+    void operator()(sqlite3* db) const;
+    void operator()(sqlite3_stmt* statement) const;
+  };
   std::string name_;
-  sqlite3* db_ = nullptr;
-  sqlite3_stmt* fetch_ = nullptr;  // SELECT data FROM messages WHERE id = ?
+  std::unique_ptr<sqlite3, Close> db_;
+  std::unique_ptr<sqlite3_stmt, Close> fetch_;  // SELECT data FROM messages WHERE id = ?
   std::vector<TopicInfo> topics_;
   std::vector<std::int64_t> topic_ids_;
 };
