@@ -64,7 +64,7 @@ test-release: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 test-sanitize: deps
-	cmake -S . -B $(ASAN_BUILD) $(SANITIZED_DEBUG) -DECO_SANITIZE=ON -DECO_BUILD_EXAMPLES=OFF
+	cmake -S . -B $(ASAN_BUILD) $(SANITIZED_DEBUG) -DECO_SANITIZE=ON -DECO_BUILD_EXAMPLES=OFF -DPython_EXECUTABLE=$(PYTHON)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
