@@ -85,7 +85,7 @@ class ByteReader {
   }
 
   std::span<const std::uint8_t> bytes_;
-  const std::string& source_;
+  std::string source_;  // its own copy: a name built for one chunk would not outlive the call
   std::size_t base_;
   std::size_t align_from_;
   bool big_endian_;
