@@ -179,10 +179,12 @@ void bind_io(py::module_& io) {
   io.def(
       "open",
       [](const py::object& path, const py::object& poses, const py::object& topic, const py::object& time_field,
-         const std::string& time_unit, const py::object& pose_topic) {
+         const std::string& time_unit, const py::object& pose_topic, const py::object& fixed_frame, bool place_points) {
         workloads::SourceOptions options;
         options.poses = text_arg(poses, "poses");
         options.pose_topic = text_arg(pose_topic, "pose_topic");
+        options.fixed_frame = text_arg(fixed_frame, "fixed_frame");
+        options.place_points = place_points;
         options.recording.topic = text_arg(topic, "topic");
         options.recording.time.field = text_arg(time_field, "time_field");
         const std::optional<io::TimeUnit> unit = io::time_unit_named(time_unit);
@@ -193,13 +195,17 @@ void bind_io(py::module_& io) {
         return workloads::open_source(where, options);
       },
       py::arg("path"), py::arg("poses") = py::none(), py::arg("topic") = py::none(), py::arg("time_field") = py::none(),
-      py::arg("time_unit") = "auto", py::arg("pose_topic") = py::none(),
-      R"(Opens what `path` holds as an eco.io.Source (a KITTI folder, point-cloud files, an MCAP or
-rosbag2 recording). poses: a KITTI or TUM trajectory file; topic: the recording's PointCloud2
-topic (default: the only one); time_field / time_unit: where each point's time is and in what
-unit ("auto", "s", "ms", "us", "ns"); pose_topic: the recording's nav_msgs/Odometry, PoseStamped or
-TransformStamped topic, interpolated at each cloud's stamp. Raises eco.io.Error naming the file,
-byte or topic at fault.)");
+      py::arg("time_unit") = "auto", py::arg("pose_topic") = py::none(), py::arg("fixed_frame") = py::none(),
+      py::arg("place_points") = true,
+      R"(Opens what `path` holds as an eco.io.Source (a KITTI folder, point-cloud files, an MCAP,
+rosbag2 or ROS 1 recording). poses: a KITTI or TUM trajectory file; topic: the recording's
+PointCloud2 topic (default: the only one); time_field / time_unit: where each point's time is and
+in what unit ("auto", "s", "ms", "us", "ns"); pose_topic: the recording's nav_msgs/Odometry,
+PoseStamped or TransformStamped topic, interpolated at each cloud's stamp (tf applied between its
+frame and the clouds'), or "tf": the clouds' frame in fixed_frame (default: its tree's root)
+through /tf and /tf_static; place_points: with timed poses and per-point times, each point placed
+by the pose at its own time (False: as measured, with its time). Raises eco.io.Error naming the
+file, byte or topic at fault.)");
 
   io.def(
       "read_kitti_scan", [](const fs::path& path) { return read_cloud(path, io::read_kitti_scan); },

@@ -44,6 +44,22 @@ def test_a_pose_topic_places_the_clouds():
                                                                   "/pose (geometry_msgs/msg/PoseStamped)"]
 
 
+def test_tf_places_the_clouds_and_their_points(expected):
+    # tf.mcap: odom -> base_link at x = 10 m/s * t, base_link -> lidar at (1, 0, 2) turned 90 degrees
+    source = eco.io.open(RECORDINGS / "tf.mcap", pose_topic="tf", fixed_frame="odom")
+    assert "poses: tf: odom -> base_link -> lidar" in source.description
+    np.testing.assert_allclose([pose[:3, 3] for pose, _ in source][0], [1.0, 0.0, 2.0], atol=1e-5)
+    placed, seen = source.read(3), eco.io.open(RECORDINGS / "tf.mcap", pose_topic="tf", place_points=False).read(3)
+    assert placed.point_times is None and len(seen.point_times) == len(seen.points)
+    np.testing.assert_array_equal(seen.points, np.array(expected["tf.mcap"]["/points"]["clouds"][3]["points"], dtype=np.float32))
+    # the first point, seen at the stamp, stays; the last, seen 0.1 s later, moves by the sensor's motion
+    # meanwhile (1 m forward, sideways in the LiDAR's turned frame, and 0.05 rad; recording_test.cpp has it exactly)
+    np.testing.assert_allclose(placed.points[0], seen.points[0], atol=1e-6)
+    assert 0.3 < np.linalg.norm(placed.points[-1] - seen.points[-1]) < 1.5
+    with pytest.raises(eco.io.Error, match="no chain of transforms joins gps and lidar"):
+        eco.io.open(RECORDINGS / "tf.mcap", pose_topic="tf", fixed_frame="gps")
+
+
 def test_topic_and_time_options(expected):
     rear = eco.io.open(RECORDINGS / "two_lidars.mcap", topic="/rear/points")
     assert len(rear) == 2

@@ -60,11 +60,19 @@ json bench_options_json(const BenchOptions& o) {
               {"sim-frames", o.sim_frames},
               {"check", o.check_every_frame}};
   if (o.data) out["data"] = std::filesystem::weakly_canonical(*o.data).string();  // --config works from anywhere
-  if (!o.source.poses.empty()) out["poses"] = std::filesystem::weakly_canonical(o.source.poses).string();
-  if (!o.source.recording.topic.empty()) out["topic"] = o.source.recording.topic;
-  if (!o.source.pose_topic.empty()) out["pose-topic"] = o.source.pose_topic;
-  if (!o.source.recording.time.field.empty()) out["time-field"] = o.source.recording.time.field;
-  if (o.source.recording.time.unit != io::TimeUnit::Auto) out["time-unit"] = io::name_of(o.source.recording.time.unit);
+  out.update(source_options_json(o.source));
+  return out;
+}
+
+json source_options_json(const workloads::SourceOptions& o) {
+  json out = json::object();
+  if (o.start > 0) out["start"] = o.start;
+  if (!o.poses.empty()) out["poses"] = std::filesystem::weakly_canonical(o.poses).string();
+  if (!o.recording.topic.empty()) out["topic"] = o.recording.topic;
+  if (!o.pose_topic.empty()) out["pose-topic"] = o.pose_topic;
+  if (!o.fixed_frame.empty()) out["fixed-frame"] = o.fixed_frame;
+  if (!o.recording.time.field.empty()) out["time-field"] = o.recording.time.field;
+  if (o.recording.time.unit != io::TimeUnit::Auto) out["time-unit"] = io::name_of(o.recording.time.unit);
   return out;
 }
 

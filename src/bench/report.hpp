@@ -26,6 +26,9 @@ void write_results(const std::filesystem::path& folder, const BenchRun& run, con
 
 /// The options of a run keyed by `eco bench`'s flags (without --out, --preset, --config).
 nlohmann::json bench_options_json(const BenchOptions& options);
+/// How --data is read (--start, --poses, --topic, --pose-topic, ...), keyed by flag: the options
+/// given, the defaults left out.
+nlohmann::json source_options_json(const workloads::SourceOptions& options);
 
 /// The Markdown tables of summary.md (without its heading), for the terminal as well.
 std::string summary_tables(const BenchRun& run, const std::vector<MethodSummary>& summaries);

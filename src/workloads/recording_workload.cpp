@@ -6,20 +6,20 @@
 
 namespace eco::workloads {
 
-RecordingWorkload::RecordingWorkload(io::Recording recording, std::optional<io::PoseTrack> track)
-    : recording_(std::move(recording)) {
-  if (track && !track->timed() && track->poses.size() < recording_.size()) {
-    throw io::Error(recording_.describe(), "", std::to_string(track->poses.size()) + " poses for " +
+RecordingWorkload::RecordingWorkload(io::Recording recording, std::optional<CloudPoses> poses)
+    : recording_(std::move(recording)), given_(std::move(poses)) {
+  const bool timed = given_ && given_->at_time;
+  if (given_ && !timed && given_->in_order.size() < recording_.size()) {
+    throw io::Error(recording_.describe(), "", std::to_string(given_->in_order.size()) + " poses for " +
                                                    std::to_string(recording_.size()) + " clouds: one pose a cloud, in order");
   }
   for (std::size_t i = 0; i < recording_.size(); ++i) {
-    if (!track || !track->timed()) {
+    if (!timed) {
       clouds_.push_back(i);
-      if (track) poses_.push_back(track->poses[i]);
+      if (given_) poses_.push_back(given_->in_order[i]);
       continue;
     }
-    const double stamp = double(recording_.stamp_ns(i)) * 1e-9;
-    if (const std::optional<Eigen::Isometry3d> pose = io::pose_at(*track, stamp)) {
+    if (const std::optional<Eigen::Isometry3d> pose = given_->at_time(double(recording_.stamp_ns(i)) * 1e-9)) {
       clouds_.push_back(i);
       poses_.push_back(*pose);
     }
@@ -35,6 +35,10 @@ WorkloadFrame RecordingWorkload::frame(std::size_t index) const {
   out.intensities = std::move(scan.cloud.intensities);
   out.time = double(scan.stamp_ns) * 1e-9;
   out.point_times = std::move(scan.cloud.times);
+  if (given_ && given_->at_time && given_->place_points && !out.point_times.empty()) {
+    (void)place_at_stamp(out.points, out.point_times, out.time, given_->at_time);
+    out.point_times.clear();
+  }
   return out;
 }
 

@@ -235,7 +235,7 @@ TEST_F(RecordingTest, Ros1BagsWrittenByRosbagAsWritten) {
       ++topics;
     }
   }
-  EXPECT_EQ(topics, 6u);  // uncompressed, bz2, lz4; a split pair; two lidars
+  EXPECT_EQ(topics, 7u);  // uncompressed, bz2, lz4; a split pair; two lidars; beside tf
   EXPECT_NE(Recording(recordings() / "split_bags", {}).describe().find("ROS 1 bags, 2 files"), std::string::npos);
   EXPECT_NE(Recording(recordings() / "ouster_lz4.bag", {}).describe().find("(ROS 1 bag)"), std::string::npos);
 }
@@ -260,10 +260,11 @@ TEST_F(RecordingTest, APoseTopicPlacesEachCloudAtItsStamp) {
     SCOPED_TRACE(topic);
     Recording bag(recordings() / "posed.mcap", {});
     ASSERT_EQ(bag.pose_topics().size(), 2u);
-    std::string frames;
-    const PoseTrack track = bag.pose_track(topic, &frames);
+    const PoseStream stream = bag.pose_track(topic);
+    const PoseTrack& track = stream.track;
     ASSERT_EQ(track.poses.size(), 6u);
-    EXPECT_EQ(frames, std::string(topic) == "/odom" ? "lidar in odom" : "the pose in odom");
+    EXPECT_EQ(stream.frame_id, "odom");
+    EXPECT_EQ(stream.child_frame_id, std::string(topic) == "/odom" ? "lidar" : "");
     EXPECT_DOUBLE_EQ(track.times[0], 1700000000.0 - 0.05);
     // the writer's poses, half a frame off the clouds': x = 10 m/s × t, yaw = 0.5 rad/s × t
     workloads::SourceOptions options;
@@ -277,8 +278,8 @@ TEST_F(RecordingTest, APoseTopicPlacesEachCloudAtItsStamp) {
       EXPECT_NEAR(pose.translation().x(), 10.0 * t, 1e-5) << k;  // seconds since 1970 in a double: 0.24 µs steps
       EXPECT_NEAR(std::atan2(pose.linear()(1, 0), pose.linear()(0, 0)), 0.5 * t, 1e-6) << k;
     }
-    ASSERT_FALSE(source.warnings.empty());
-    EXPECT_NE(source.warnings.back().find("are taken as the LiDAR's: no extrinsic"), std::string::npos) << source.warnings.back();
+    // the odometry's child frame is the clouds': nothing to warn of; PoseStamped names none
+    ASSERT_EQ(source.warnings.size(), std::string(topic) == "/odom" ? 0u : 1u);
   }
   // a ROS 1 bag's nav_msgs/Odometry, at the clouds' own stamps: x = k
   workloads::SourceOptions options;
@@ -313,6 +314,123 @@ TEST_F(RecordingTest, APoseTopicThatIsNoneIsRefusedByName) {
   const workloads::OpenedSource unposed = workloads::open_source(recordings() / "posed.mcap", {});
   EXPECT_FALSE(unposed.has_poses);
   EXPECT_EQ(unposed.pose_topics, (std::vector<std::string>{"/odom (nav_msgs/msg/Odometry)", "/pose (geometry_msgs/msg/PoseStamped)"}));
+}
+
+/// The motion tf.mcap and tf.bag hold (write_mcap.mjs, write_ros1_bags.py): `frame`'s pose in
+/// map (or in odom, without map -> odom's (0, 5, 0)) t seconds after the first cloud.
+Eigen::Isometry3d tf_pose(const std::string& fixed, const std::string& frame, double t) {
+  const Eigen::Isometry3d map_T_odom(Eigen::Translation3d(0, 5, 0));
+  const Eigen::Isometry3d odom_T_base = Eigen::Translation3d(10 * t, 0, 0) * Eigen::AngleAxisd(0.5 * t, Eigen::Vector3d::UnitZ());
+  const Eigen::Isometry3d base_T_lidar = Eigen::Translation3d(1, 0, 2) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ());
+  const Eigen::Isometry3d odom_T_frame = frame == "lidar" ? odom_T_base * base_T_lidar : odom_T_base;
+  return fixed == "map" ? map_T_odom * odom_T_frame : odom_T_frame;
+}
+
+void expect_pose(const Eigen::Isometry3d& got, const Eigen::Isometry3d& want, const std::string& what) {
+  // seconds since 1970 in a double: 0.24 µs steps, 2.4 µm at 10 m/s
+  EXPECT_LT((got.translation() - want.translation()).norm(), 1e-5) << what;
+  EXPECT_LT((got.linear() - want.linear()).cwiseAbs().maxCoeff(), 1e-6) << what;
+}
+
+workloads::OpenedSource opened(const fs::path& path, const std::string& pose_topic, const std::string& fixed_frame = "",
+                               bool place_points = false) {
+  workloads::SourceOptions options;
+  options.pose_topic = pose_topic;
+  options.fixed_frame = fixed_frame;
+  options.place_points = place_points;
+  return workloads::open_source(path, options);
+}
+
+TEST_F(RecordingTest, TfPlacesEachCloudThroughItsChainOfFrames) {
+  for (const char* file : {"tf.mcap", "tf.bag"}) {
+    SCOPED_TRACE(file);
+    for (const std::string fixed : {"", "map", "odom"}) {
+      const workloads::OpenedSource source = opened(recordings() / file, "tf", fixed);
+      ASSERT_TRUE(source.has_poses);
+      ASSERT_EQ(source.size(), 4u);
+      const std::string chain = fixed == "odom" ? "tf: odom -> base_link -> lidar" : "tf: map -> odom -> base_link -> lidar";
+      EXPECT_NE(source.description.find("; poses: " + chain), std::string::npos) << source.description;
+      EXPECT_TRUE(source.warnings.empty()) << source.warnings.front();
+      for (std::size_t k = 0; k < 4; ++k) {
+        expect_pose(source.frames->pose(k), tf_pose(fixed.empty() ? "map" : fixed, "lidar", 0.1 * double(k)),
+                    fixed + " " + std::to_string(k));
+      }
+    }
+    // a frame beside the chain: the camera, on another branch of base_link, sees the LiDAR fixed
+    const workloads::OpenedSource camera = opened(recordings() / file, "tf", "camera");
+    EXPECT_NE(camera.description.find("tf: camera <- base_link -> lidar"), std::string::npos) << camera.description;
+    expect_pose(camera.frames->pose(3), Eigen::Translation3d(0.5, 0, 1.0) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()),
+                "camera");
+    try {
+      (void)opened(recordings() / file, "tf", "gps");
+      ADD_FAILURE() << "a fixed frame outside the tree was taken";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("no chain of transforms joins gps and lidar; the frames are: base_link, camera, lidar, "
+                                           "map, odom"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  try {
+    (void)opened(recordings() / "tf.mcap", "/odom", "map");
+    ADD_FAILURE() << "--fixed-frame was taken without --pose-topic tf";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--fixed-frame map is for --pose-topic tf"), std::string::npos) << e.what();
+  }
+  try {
+    (void)opened(recordings() / "posed.mcap", "tf");
+    ADD_FAILURE() << "a recording without tf gave tf's poses";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("has no /tf or /tf_static topic of tf2_msgs/TFMessage; its topics:"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(opened(recordings() / "tf.bag", "").pose_topics.back(), "tf (/tf and /tf_static, from --fixed-frame to the clouds' frame)");
+}
+
+TEST_F(RecordingTest, APoseTopicReachesTheCloudsFrameThroughTf) {
+  // /odom places base_link in odom; tf_static's base_link -> lidar takes it to the clouds' frame
+  const workloads::OpenedSource source = opened(recordings() / "tf.mcap", "/odom");
+  EXPECT_NE(source.description.find("poses: /odom (base_link in odom), then tf: base_link -> lidar"), std::string::npos)
+      << source.description;
+  EXPECT_TRUE(source.warnings.empty()) << source.warnings.front();
+  for (std::size_t k = 0; k < 4; ++k) expect_pose(source.frames->pose(k), tf_pose("odom", "lidar", 0.1 * double(k)), std::to_string(k));
+  // without tf to link the frames, the poses are taken as they are, and the user told so
+  const workloads::OpenedSource bare = opened(recordings() / "posed.mcap", "/pose");
+  ASSERT_FALSE(bare.warnings.empty());
+  EXPECT_NE(bare.warnings.back().find("the poses of /pose (the pose in odom) are taken as the LiDAR's (lidar): no tf in the "
+                                      "recording links them"),
+            std::string::npos)
+      << bare.warnings.back();
+}
+
+TEST_F(RecordingTest, EachPointIsPlacedByThePoseAtItsOwnTime) {
+  const std::pair<const char*, const nlohmann::json*> files[] = {{"tf.mcap", &expected()["tf.mcap"]["/points"]["clouds"]},
+                                                                 {"tf.bag", &ros1_expected()["tf.bag"]["/points"]["clouds"]}};
+  for (const auto& [file, clouds] : files) {
+    SCOPED_TRACE(file);
+    const workloads::OpenedSource placed = opened(recordings() / file, "tf", "", true);
+    const workloads::OpenedSource as_seen = opened(recordings() / file, "tf", "", false);
+    ASSERT_EQ(placed.size(), clouds->size());
+    for (std::size_t k = 0; k < placed.size(); ++k) {
+      const workloads::WorkloadFrame frame = placed.frames->frame(k), raw = as_seen.frames->frame(k);
+      const nlohmann::json& want = (*clouds)[k];
+      ASSERT_EQ(frame.points.size(), want["points"].size());
+      EXPECT_TRUE(frame.point_times.empty()) << "placed points have nothing left to deskew";
+      ASSERT_EQ(raw.point_times.size(), raw.points.size());
+      const double t = 0.1 * double(k);
+      const Eigen::Isometry3d stamp_T_map = tf_pose("map", "lidar", t).inverse();
+      double largest_move = 0.0;
+      for (std::size_t i = 0; i < frame.points.size(); ++i) {
+        const Eigen::Vector3d seen(want["points"][i][0].get<double>(), want["points"][i][1].get<double>(), want["points"][i][2].get<double>());
+        ASSERT_EQ(raw.points[i].cast<double>(), seen.cast<float>().cast<double>()) << "unplaced points stay as seen";
+        const double tau = want["times"][i].get<double>();
+        const Eigen::Vector3d expect = stamp_T_map * tf_pose("map", "lidar", t + tau) * seen;
+        ASSERT_LT((frame.points[i].cast<double>() - expect).norm(), 2e-5) << k << "/" << i << " at " << tau;
+        largest_move = std::max(largest_move, (expect - seen).norm());
+      }
+      EXPECT_GT(largest_move, 0.5) << "the sweep's motion moves its last points by about a metre";
+    }
+  }
 }
 
 }  // namespace

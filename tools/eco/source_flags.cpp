@@ -1,6 +1,8 @@
 #include "source_flags.hpp"
 #include "spellings.hpp"
 
+#include "bench/report.hpp"
+
 #include <eco/io/error.hpp>
 #include <eco/workloads/frame_window.hpp>
 
@@ -20,8 +22,11 @@ SourceFlags::SourceFlags(CLI::App& cmd, const std::string& without_data) {
       ->capture_default_str();
   cmd.add_option("--topic", options.recording.topic, "the recording's PointCloud2 topic (default: the only one)");
   cmd.add_option(both_spellings("--pose-topic"), options.pose_topic,
-                 "poses from the recording's nav_msgs/Odometry, geometry_msgs/PoseStamped or TransformStamped topic, "
-                 "at each cloud's stamp (taken as the LiDAR's)");
+                 "poses from the recording's nav_msgs/Odometry, geometry_msgs/PoseStamped or TransformStamped topic "
+                 "(tf applied from its frame to the clouds'), or tf: the clouds' frame through /tf and /tf_static; "
+                 "at each cloud's stamp, and at each point's time when points have times");
+  cmd.add_option(both_spellings("--fixed-frame"), options.fixed_frame,
+                 "with --pose-topic tf: the frame the clouds are placed in (default: the root of their tf tree)");
   cmd.add_option(both_spellings("--time-field"), options.recording.time.field,
                  "the point field holding each point's time (default: the first of t, time, timestamp, timestamps, "
                  "offset_time, stamps)");
@@ -48,12 +53,7 @@ workloads::OpenedSource SourceFlags::open() const {
 
 void SourceFlags::add_to(nlohmann::json& out) const {
   if (!data.empty()) out["data"] = std::filesystem::weakly_canonical(data).string();
-  if (options.start > 0) out["start"] = options.start;
-  if (!options.poses.empty()) out["poses"] = std::filesystem::weakly_canonical(options.poses).string();
-  if (!options.recording.topic.empty()) out["topic"] = options.recording.topic;
-  if (!options.pose_topic.empty()) out["pose-topic"] = options.pose_topic;
-  if (!options.recording.time.field.empty()) out["time-field"] = options.recording.time.field;
-  if (time_unit != "auto") out["time-unit"] = time_unit;
+  out.update(bench::source_options_json(resolved()));
 }
 
 }  // namespace eco::cli

@@ -12,6 +12,7 @@
 
 #include <eco/io/point_cloud2.hpp>
 #include <eco/io/pose_file.hpp>
+#include <eco/io/transform_tree.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -42,6 +43,12 @@ struct RecordedScan {
   std::int64_t stamp_ns = 0;  ///< the cloud's header stamp
   std::string frame_id;
   DecodedCloud cloud;
+};
+
+/// A topic's poses: where `child_frame_id` was in `frame_id` (PoseStamped names no child).
+struct PoseStream {
+  PoseTrack track;
+  std::string frame_id, child_frame_id;
 };
 
 class Recording {
@@ -77,12 +84,19 @@ class Recording {
   /// geometry_msgs/TransformStamped).
   [[nodiscard]] std::vector<RecordedTopic> pose_topics() const;
   /// Every pose on `topic`, in stamp order, as a timed trajectory (at the messages' header
-  /// stamps); `frames`, when given, gets what they place ("base_link in odom"). Throws
-  /// eco::io::Error naming the topic when it is missing, holds no pose type, or is empty.
-  [[nodiscard]] PoseTrack pose_track(const std::string& topic, std::string* frames = nullptr);
+  /// stamps) with the frames it places. Throws eco::io::Error naming the topic when it is missing,
+  /// holds no pose type, or is empty.
+  [[nodiscard]] PoseStream pose_track(const std::string& topic);
+  /// Whether the recording has tf's topics (/tf, /tf_static).
+  [[nodiscard]] bool has_tf() const;
+  /// The frames /tf and /tf_static give (tf2_msgs/TFMessage), every transform of the recording.
+  /// Throws eco::io::Error naming the topic and message of a transform that breaks the tree, and
+  /// naming the topics when there is no tf topic.
+  [[nodiscard]] TransformTree transform_tree();
 
  private:
   [[nodiscard]] PointCloud2 parsed(std::size_t index, const std::string& source);
+  [[nodiscard]] std::vector<const RecordedTopic*> tf_topics() const;
 
   std::string name_;
   std::string kind_;

@@ -4,7 +4,7 @@
 ///
 ///   a KITTI-layout folder        velodyne/*.bin, poses.txt (or --poses), calib.txt, times.txt
 ///   a rosbag2 folder             metadata.yaml beside .db3 or .mcap files (io::Recording)
-///   an .mcap or .db3 file        (io::Recording)
+///   an .mcap, .db3 or .bag file  (io::Recording); a folder of ROS 1 bags
 ///   a folder of point clouds     .pcd, .ply, .bin files in name order, poses from --poses
 ///
 ///   eco::workloads::OpenedSource in = eco::workloads::open_source("run.mcap", {});
@@ -30,9 +30,14 @@ struct SourceOptions {
   std::string poses;
   io::RecordingOptions recording;  ///< --topic, --time-field, --time-unit
   /// A recording's topic of poses (nav_msgs/Odometry, geometry_msgs/PoseStamped or
-  /// TransformStamped), interpolated at each cloud's stamp as a TUM file would be. The poses are
-  /// taken as the LiDAR's: no extrinsic (TF) is applied.
+  /// TransformStamped), interpolated at each cloud's stamp as a TUM file would be, the recording's
+  /// tf between the poses' frame and the clouds' applied when it has one; or "tf": the clouds'
+  /// frame in `fixed_frame` through /tf and /tf_static.
   std::string pose_topic;
+  std::string fixed_frame;  ///< with pose_topic "tf"; empty: the root of the clouds' frame's tree
+  /// With timed poses and per-point times, each point placed by the pose at its own time (the
+  /// sweep's smear taken out); off where the poses are only a reference, as for an odometry.
+  bool place_points = true;
   std::size_t start = 0;  ///< the first frame taken (`--start`): the frames are numbered from it
 };
 

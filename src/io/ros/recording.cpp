@@ -154,7 +154,7 @@ std::vector<RecordedTopic> Recording::pose_topics() const {
   return out;
 }
 
-PoseTrack Recording::pose_track(const std::string& topic, std::string* frames) {
+PoseStream Recording::pose_track(const std::string& topic) {
   const auto it = std::ranges::find(topics_, topic, &RecordedTopic::name);
   if (it == topics_.end()) throw Error(name_, "", "has no topic " + topic + "; its topics:\n" + list_topics(topics_));
   if (!detail::is_pose_type(it->type)) {
@@ -172,14 +172,43 @@ PoseTrack Recording::pose_track(const std::string& topic, std::string* frames) {
   }
   if (poses.empty()) throw Error(name_, "", "topic " + topic + " holds no message");
   std::ranges::stable_sort(poses, {}, &detail::StampedPose::stamp_ns);
-  if (frames) *frames = (poses.front().child_frame_id.empty() ? std::string("the pose") : poses.front().child_frame_id) +
-                        " in " + poses.front().frame_id;
-  PoseTrack track;
+  PoseStream stream{{}, poses.front().frame_id, poses.front().child_frame_id};
   for (const detail::StampedPose& p : poses) {
-    track.times.push_back(double(p.stamp_ns) * 1e-9);
-    track.poses.push_back(p.pose);
+    stream.track.times.push_back(double(p.stamp_ns) * 1e-9);
+    stream.track.poses.push_back(p.pose);
   }
-  return track;
+  return stream;
+}
+
+std::vector<const RecordedTopic*> Recording::tf_topics() const {
+  std::vector<const RecordedTopic*> out;
+  for (const RecordedTopic& t : topics_) {
+    const bool named_tf = t.name == "/tf" || t.name == "/tf_static" || t.name == "tf" || t.name == "tf_static";
+    if (named_tf && detail::is_tf_type(t.type)) out.push_back(&t);
+  }
+  return out;
+}
+
+bool Recording::has_tf() const { return !tf_topics().empty(); }
+
+TransformTree Recording::transform_tree() {
+  const std::vector<const RecordedTopic*> topics = tf_topics();
+  if (topics.empty()) throw Error(name_, "", "has no /tf or /tf_static topic of tf2_msgs/TFMessage; its topics:\n" + list_topics(topics_));
+  TransformTree tree;
+  for (const RecordedTopic* topic : topics) {
+    const bool is_static = topic->name.ends_with("tf_static");
+    for (const auto& part : parts_) {
+      const detail::Encoding encoding = part->encoding(topic->name);
+      std::size_t n = 0;
+      for (const detail::StoredMessage& m : part->index(topic->name)) {
+        const std::string source = name_ + ", " + topic->name + " message " + std::to_string(n++);
+        for (const detail::StampedPose& t : detail::parse_tf_message(part->read(m), encoding, source)) {
+          tree.add({double(t.stamp_ns) * 1e-9, t.frame_id, t.child_frame_id, t.pose}, is_static, source);
+        }
+      }
+    }
+  }
+  return tree;
 }
 
 }  // namespace eco::io

@@ -15,16 +15,21 @@ builtin_interfaces/Time stamp
 string frame_id${SEPARATOR}MSG: builtin_interfaces/Time
 int32 sec
 uint32 nanosec`;
+const QUATERNION = `MSG: geometry_msgs/Quaternion
+float64 x
+float64 y
+float64 z
+float64 w`;
+const VECTOR3 = `MSG: geometry_msgs/Vector3
+float64 x
+float64 y
+float64 z`;
 const POSE = `MSG: geometry_msgs/Pose
 Point position
 Quaternion orientation${SEPARATOR}MSG: geometry_msgs/Point
 float64 x
 float64 y
-float64 z${SEPARATOR}MSG: geometry_msgs/Quaternion
-float64 x
-float64 y
-float64 z
-float64 w`;
+float64 z${SEPARATOR}${QUATERNION}`;
 
 export const POINT_CLOUD2 = `std_msgs/Header header
 uint32 height
@@ -59,12 +64,16 @@ float64[36] covariance${SEPARATOR}MSG: geometry_msgs/TwistWithCovariance
 Twist twist
 float64[36] covariance${SEPARATOR}MSG: geometry_msgs/Twist
 Vector3 linear
-Vector3 angular${SEPARATOR}MSG: geometry_msgs/Vector3
-float64 x
-float64 y
-float64 z${SEPARATOR}${HEADER}${SEPARATOR}${POSE}`;
+Vector3 angular${SEPARATOR}${VECTOR3}${SEPARATOR}${HEADER}${SEPARATOR}${POSE}`;
 export const POSE_STAMPED = `std_msgs/Header header
 geometry_msgs/Pose pose${SEPARATOR}${HEADER}${SEPARATOR}${POSE}`;
+
+export const TF_MESSAGE = `geometry_msgs/TransformStamped[] transforms${SEPARATOR}MSG: geometry_msgs/TransformStamped
+std_msgs/Header header
+string child_frame_id
+Transform transform${SEPARATOR}MSG: geometry_msgs/Transform
+Vector3 translation
+Quaternion rotation${SEPARATOR}${VECTOR3}${SEPARATOR}${QUATERNION}${SEPARATOR}${HEADER}`;
 
 /// A CDR serialiser of the message `definition` describes.
 export function cdrWriter(definition) {

@@ -8,7 +8,7 @@
 import { McapWriter } from "@mcap/core";
 import { open } from "node:fs/promises";
 import { writeFileSync, mkdirSync } from "node:fs";
-import { COMPRESSORS, FileWritable, ODOMETRY, POINT, POINT_CLOUD2, POSE_STAMPED, cdrWriter } from "./ros2_messages.mjs";
+import { COMPRESSORS, FileWritable, ODOMETRY, POINT, POINT_CLOUD2, POSE_STAMPED, TF_MESSAGE, cdrWriter } from "./ros2_messages.mjs";
 
 const OUT = process.argv[2];
 mkdirSync(OUT, { recursive: true });
@@ -16,6 +16,7 @@ const cloudWriter = cdrWriter(POINT_CLOUD2);
 const pointWriter = cdrWriter(POINT);
 const odometryWriter = cdrWriter(ODOMETRY);
 const poseStampedWriter = cdrWriter(POSE_STAMPED);
+const tfWriter = cdrWriter(TF_MESSAGE);
 
 const T = { INT8: 1, UINT8: 2, INT16: 3, UINT16: 4, INT32: 5, UINT32: 6, FLOAT32: 7, FLOAT64: 8 };
 const SIZE = { 1: 1, 2: 1, 3: 2, 4: 2, 5: 4, 6: 4, 7: 4, 8: 8 };
@@ -145,6 +146,7 @@ async function writeMcap(name, { topics, compression = "zstd", chunked = true, c
   for (const e of extra.filter((x) => x.poses)) {
     // poses half a frame off the clouds': x = 10 m/s × t, a yaw of 0.5 rad/s × t (interpolated at a cloud's stamp)
     const isOdometry = e.type === "nav_msgs/msg/Odometry";
+    const child = e.child ?? "lidar";
     const schema = await writer.registerSchema({ name: e.type, encoding: "ros2msg",
                                                  data: new TextEncoder().encode(isOdometry ? ODOMETRY : POSE_STAMPED) });
     const channel = await writer.registerChannel({ topic: e.topic, schemaId: schema, messageEncoding: "cdr", metadata: new Map() });
@@ -154,14 +156,38 @@ async function writeMcap(name, { topics, compression = "zstd", chunked = true, c
       const header = { stamp: { sec: Number(tNs / 1000000000n), nanosec: Number(tNs % 1000000000n) }, frame_id: "odom" };
       const pose = { position: { x: 10 * t, y: 0, z: 0 }, orientation: { x: 0, y: 0, z: Math.sin(0.25 * t), w: Math.cos(0.25 * t) } };
       const data = isOdometry
-        ? odometryWriter.writeMessage({ header, child_frame_id: "lidar", pose: { pose, covariance: new Float64Array(36) },
+        ? odometryWriter.writeMessage({ header, child_frame_id: child, pose: { pose, covariance: new Float64Array(36) },
                                         twist: { twist: { linear: { x: 0, y: 0, z: 0 }, angular: { x: 0, y: 0, z: 0 } },
                                                  covariance: new Float64Array(36) } })
         : poseStampedWriter.writeMessage({ header, pose });
       messages.push({ channelId: channel, sequence: k, logTime: tNs, publishTime: tNs, data });
     }
   }
-  for (const e of extra.filter((x) => !x.poses)) {
+  for (const e of extra.filter((x) => x.tf)) {
+    // tf's tree (as recording_test.cpp expects it): map -> odom fixed at (0, 5, 0) on /tf at the
+    // ends; odom -> base_link moving as the poses above, at 20 Hz; base_link -> lidar at (1, 0, 2)
+    // turned 90 degrees, and base_link -> camera, on /tf_static
+    const schema = await writer.registerSchema({ name: "tf2_msgs/msg/TFMessage", encoding: "ros2msg",
+                                                 data: new TextEncoder().encode(TF_MESSAGE) });
+    const dynamic = await writer.registerChannel({ topic: "/tf", schemaId: schema, messageEncoding: "cdr", metadata: new Map() });
+    const fixed = await writer.registerChannel({ topic: "/tf_static", schemaId: schema, messageEncoding: "cdr", metadata: new Map() });
+    const stamped = (tNs, parent, child, translation, yaw) => ({
+      header: { stamp: { sec: Number(tNs / 1000000000n), nanosec: Number(tNs % 1000000000n) }, frame_id: parent },
+      child_frame_id: child,
+      transform: { translation: { x: translation[0], y: translation[1], z: translation[2] },
+                   rotation: { x: 0, y: 0, z: Math.sin(yaw / 2), w: Math.cos(yaw / 2) } } });
+    const t0 = BigInt(STAMP0) * 1000000000n;
+    messages.push({ channelId: fixed, sequence: 0, logTime: t0 - 100000000n, publishTime: t0, data: tfWriter.writeMessage({
+      transforms: [stamped(t0, "base_link", "lidar", [1, 0, 2], Math.PI / 2), stamped(t0, "base_link", "camera", [0.5, 0, 1], 0)] }) });
+    for (let k = 0; k < 12; k++) {
+      const tNs = t0 + BigInt(k) * 50000000n - 50000000n;
+      const t = Number(tNs - t0) * 1e-9;
+      const transforms = [stamped(tNs, "odom", "base_link", [10 * t, 0, 0], 0.5 * t)];
+      if (k === 0 || k === 11) transforms.push(stamped(tNs, "map", "odom", [0, 5, 0], 0));
+      messages.push({ channelId: dynamic, sequence: k, logTime: tNs, publishTime: tNs, data: tfWriter.writeMessage({ transforms }) });
+    }
+  }
+  for (const e of extra.filter((x) => !x.poses && !x.tf)) {
     const schema = await writer.registerSchema({ name: e.type, encoding: "ros2msg", data: new TextEncoder().encode(POINT) });
     const channel = await writer.registerChannel({ topic: e.topic, schemaId: schema, messageEncoding: "cdr", metadata: new Map() });
     for (let k = 0; k < e.count; k++) {
@@ -197,6 +223,9 @@ expected["posed.mcap"] = await writeMcap("posed.mcap", {
   topics: [{ topic: "/points", layout: "velodyne", clouds: 4, points: 300 }],
   extra: [{ topic: "/odom", type: "nav_msgs/msg/Odometry", count: 6, poses: true },
           { topic: "/pose", type: "geometry_msgs/msg/PoseStamped", count: 6, poses: true }] });
+expected["tf.mcap"] = await writeMcap("tf.mcap", {
+  topics: [{ topic: "/points", layout: "velodyne", clouds: 4, points: 300 }],
+  extra: [{ tf: true }, { topic: "/odom", type: "nav_msgs/msg/Odometry", child: "base_link", count: 12, poses: true }] });
 
 // the raw CDR messages of one topic, for the rosbag2 SQLite file write_db3.py makes
 const db3 = [];

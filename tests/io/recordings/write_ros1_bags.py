@@ -1,6 +1,7 @@
 """Writes the ROS 1 bags ECO's reader is tested on with Debian's rosbag (python3-rosbag), not ECO's
 code: Ouster-laid PointCloud2 clouds in an uncompressed, a bz2 and an lz4 bag, a recording split
-over two bags in a folder, and a bag with two cloud topics and an odometry topic. Beside them,
+over two bags in a folder, a bag with two cloud topics and an odometry topic, and one with tf's
+tree (the tree and motion of write_mcap.mjs's tf.mcap). Beside them,
 ros1_expected.json: what each cloud must decode to (the formula of write_mcap.mjs).
 
 usage: write_ros1_bags.py OUT_DIR"""
@@ -13,8 +14,10 @@ import sys
 
 import rosbag
 import rospy
+from geometry_msgs.msg import TransformStamped
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import PointCloud2, PointField
+from tf2_msgs.msg import TFMessage
 
 OUT = sys.argv[1]
 STAMP0 = 1700000000
@@ -77,7 +80,36 @@ def write(path, topics, compression="none", odometry=0):
     return expected
 
 
+def transform(stamp, parent, child, translation, yaw):
+    t = TransformStamped()
+    t.header.stamp, t.header.frame_id, t.child_frame_id = stamp, parent, child
+    t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = translation
+    t.transform.rotation.z, t.transform.rotation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+    return t
+
+
+def write_tf(path):
+    """4 clouds of /points in frame lidar; /tf_static: base_link -> lidar at (1, 0, 2) turned 90
+    degrees, base_link -> camera; /tf: odom -> base_link at x = 10 m/s * t, yaw 0.5 rad/s * t, 20 Hz,
+    and map -> odom at (0, 5, 0) at the ends."""
+    expected = write(path, [("/points", 0, 4, 512)])
+    t0 = rospy.Time(STAMP0)
+    with rosbag.Bag(path, "a") as bag:
+        static = TFMessage([transform(t0, "base_link", "lidar", (1, 0, 2), math.pi / 2),
+                            transform(t0, "base_link", "camera", (0.5, 0, 1), 0)])
+        bag.write("/tf_static", static, t0)
+        for k in range(12):
+            stamp = t0 + rospy.Duration(0, k * 50000000) - rospy.Duration(0, 50000000)
+            t = (stamp - t0).to_sec()
+            transforms = [transform(stamp, "odom", "base_link", (10 * t, 0, 0), 0.5 * t)]
+            if k in (0, 11):
+                transforms.append(transform(stamp, "map", "odom", (0, 5, 0), 0))
+            bag.write("/tf", TFMessage(transforms), stamp)
+    return expected
+
+
 expected = {}
+expected["tf.bag"] = write_tf(os.path.join(OUT, "tf.bag"))
 for compression in ["none", "bz2", "lz4"]:
     expected[f"ouster_{compression}.bag"] = write(os.path.join(OUT, f"ouster_{compression}.bag"),
                                                   [("/os_cloud_node/points", 0, 4, 512)], compression)
