@@ -46,7 +46,8 @@ struct Record<CityModel> {
         field("road_half_width", &CityModel::road_half_width, "[m] centre line to kerb"),
         field("lane_offset", &CityModel::lane_offset, "[m] centre line to the right-hand lane"),
         field("turn_radius", &CityModel::turn_radius, "[m] of the centre line through a corner"),
-        field("moving_cars", &CityModel::moving_cars, "cars that drive their own routes"),
+        field("cars_per_intersection", &CityModel::cars_per_intersection,
+              "moving cars that set off from each intersection the route passes, on average"),
         field("parked_car_chance", &CityModel::parked_car_chance, "per kerb-side parking slot"),
     };
   }

@@ -114,12 +114,12 @@ def test_derived_values():
 
 
 def test_simulator_config_round_trips():
-    config = eco.sim.SimConfig(seed=5, frames=3, lidar={"beams": 16}, city={"moving_cars": 2})
-    assert config.lidar.beams == 16 and config.city.moving_cars == 2
+    config = eco.sim.SimConfig(seed=5, frames=3, lidar={"beams": 16}, city={"cars_per_intersection": 2.5})
+    assert config.lidar.beams == 16 and config.city.cars_per_intersection == 2.5
     assert eco.sim.SimConfig(**config.to_dict()) == config
     assert pickle.loads(pickle.dumps(config)) == config
     assert eco.sim.Simulator(config).config == config
-    assert eco.sim.Simulator(seed=5, frames=3, lidar={"beams": 16}, city={"moving_cars": 2}).config == config
+    assert eco.sim.Simulator(seed=5, frames=3, lidar={"beams": 16}, city={"cars_per_intersection": 2.5}).config == config
 
 
 def test_results_are_records():

@@ -117,28 +117,40 @@ City build_city(const SimConfig& config) {
   for (const auto& [bx, by] : blocks) add_block(city, config, bx, by);
 
   // Moving cars: one leads the sensor vehicle along its route; the others set off from the
-  // intersections it passes, in any direction, at their own speeds.
-  Rng car_rng(config.seed, 2);
-  const std::vector<Eigen::Vector2i> stops = city.routes[0].intersections();  // routes grows below
-  for (int k = 0; k < m.moving_cars; ++k) {
-    const Surface paint{io::label::kMovingCar, static_cast<float>(car_rng.uniform(0.3, 0.8))};
-    if (k == 0) {
-      city.cars.push_back({0, car_rng.uniform(15.0, 25.0), config.speed, paint});
-      continue;
+  // intersections it passes, in any direction, at their own speeds, each as the vehicle comes
+  // within kSetOffAhead of it along the route. Each intersection's cars come from draws of their
+  // own, and only the cars set off before the drive ends are made, so that a longer drive adds
+  // cars later on but changes none of a shorter one's.
+  Rng lead_rng(config.seed, 2);
+  city.cars.push_back({0, lead_rng.uniform(15.0, 25.0), config.speed,
+                       {io::label::kMovingCar, static_cast<float>(lead_rng.uniform(0.3, 0.8))}, 0.0});
+  constexpr double kSetOffAhead = 150.0;  // [m] beyond the sensor's 120 m, along the route
+  const Route& ego = city.routes[0];
+  const std::vector<Eigen::Vector2i> stops = ego.intersections();  // routes grows below
+  const std::vector<double> arcs = ego.intersection_arcs();
+  for (std::size_t j = 0; j < stops.size(); ++j) {
+    const double sets_off = std::max(0.0, (arcs[j] - kSetOffAhead) / config.speed);
+    if (sets_off > duration) break;
+    Rng count_rng(config.seed, 0x200000000ull + j);
+    const int cars = count_rng.poisson(m.cars_per_intersection);
+    for (int i = 0; i < cars; ++i) {
+      Rng car_rng(config.seed, 0x300000000ull + (static_cast<std::uint64_t>(j) << 12) + static_cast<std::uint64_t>(i));
+      const Surface paint{io::label::kMovingCar, static_cast<float>(car_rng.uniform(0.3, 0.8))};
+      const double speed = car_rng.uniform(4.0, 12.0);
+      const double start = car_rng.uniform(0.0, m.block_pitch);
+      const int direction = car_rng.below(4);
+      city.routes.emplace_back(car_rng, stops[j], direction, start + speed * (duration - sets_off) + margin,
+                               m.block_pitch, m.turn_radius);
+      city.cars.push_back({city.routes.size() - 1, start, speed, paint, sets_off});
     }
-    const double speed = car_rng.uniform(4.0, 12.0);
-    const double start = car_rng.uniform(0.0, m.block_pitch);
-    const Eigen::Vector2i from = stops[static_cast<std::size_t>(car_rng.below(static_cast<int>(stops.size())))];
-    city.routes.emplace_back(car_rng, from, car_rng.below(4), start + speed * duration + margin,
-                             m.block_pitch, m.turn_radius);
-    city.cars.push_back({city.routes.size() - 1, start, speed, paint});
   }
   return city;
 }
 
 void car_bodies(const City& city, const MovingCar& car, double lane_offset, double t,
                 std::vector<TurnedBox>& out) {
-  const RoutePoint p = city.routes[car.route].at(car.start + car.speed * t, lane_offset);
+  if (t < car.sets_off) return;
+  const RoutePoint p = city.routes[car.route].at(car.start + car.speed * (t - car.sets_off), lane_offset);
   const Eigen::Vector2d forward(std::cos(p.heading), std::sin(p.heading));
   const Eigen::Vector2d cabin = p.position - 0.2 * forward;
   out.push_back({{p.position.x(), p.position.y(), 0.625}, {kCarLength / 2, kCarWidth / 2, 0.375},

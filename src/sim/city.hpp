@@ -13,9 +13,10 @@ namespace eco::sim {
 
 struct MovingCar {
   std::size_t route = 0;  ///< index into City::routes
-  double start = 0.0;     ///< [m] arc length at time 0
+  double start = 0.0;     ///< [m] arc length when it sets off
   double speed = 0.0;     ///< [m/s]
   Surface paint;
+  double sets_off = 0.0;  ///< [s] the time it appears and starts driving; absent before
 };
 
 struct City {
@@ -26,10 +27,11 @@ struct City {
   std::vector<Sphere> spheres;
 };
 
-/// Everything the configuration and its seed describe.
+/// Everything the configuration and its seed describe. What lies within the sensor's reach during
+/// the first n frames is the same for any drive of n frames or more: a longer drive only adds.
 [[nodiscard]] City build_city(const SimConfig& config);
 
-/// The body and cabin of a moving car at time t, appended to `out`.
+/// The body and cabin of a moving car at time t, appended to `out` (nothing before it sets off).
 void car_bodies(const City& city, const MovingCar& car, double lane_offset, double t,
                 std::vector<TurnedBox>& out);
 

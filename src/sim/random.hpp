@@ -19,6 +19,13 @@ class Rng {
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
   bool chance(double p) { return uniform() < p; }
   int below(int n) { return static_cast<int>(uniform() * n); }
+  /// A count with Poisson's law of mean `mean` (Knuth's product of uniforms; means up to ~100).
+  int poisson(double mean) {
+    const double floor = std::exp(-mean);
+    int k = 0;
+    for (double product = uniform(); product > floor; product *= uniform()) ++k;
+    return k;
+  }
   double normal() {  // Box-Muller
     const double u = 1.0 - uniform();
     return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * uniform());

@@ -27,6 +27,7 @@ void Route::add(const Eigen::Vector2d& start, double heading, double length, dou
 Route::Route(Rng& rng, Eigen::Vector2i start, int direction, double length, double pitch,
              double turn_radius) {
   intersections_.push_back(start);
+  intersection_arcs_.push_back(0.0);
   Eigen::Vector2d from = start.cast<double>() * pitch;  // where the next straight begins
   while (length_ < length) {
     const Eigen::Vector2i next = intersections_.back() + step(direction);
@@ -37,12 +38,14 @@ Route::Route(Rng& rng, Eigen::Vector2i start, int direction, double length, doub
     const double heading = direction * kHalfPi;
     if (turn == 0) {
       add(from, heading, (corner - from).norm(), 0.0);
+      intersection_arcs_.push_back(length_);
       from = corner;
       continue;
     }
     const int turned = (direction + turn + 4) & 3;
     const Eigen::Vector2d arc_start = corner - turn_radius * unit(direction);
     add(from, heading, (arc_start - from).norm(), 0.0);
+    intersection_arcs_.push_back(length_ + kHalfPi * turn_radius / 2.0);
     add(arc_start, heading, kHalfPi * turn_radius, turn / turn_radius);
     from = corner + turn_radius * unit(turned);
     direction = turned;

@@ -18,7 +18,8 @@ struct RoutePoint {
 class Route {
  public:
   /// Starts at intersection `start` (grid units) heading along `direction` (0 E, 1 N, 2 W, 3 S);
-  /// at each intersection goes straight (1/2), left or right (1/4 each) until `length` metres.
+  /// at each intersection goes straight (1/2), left or right (1/4 each) until `length` metres. The
+  /// draws are made an intersection at a time: a longer route begins as a shorter one does.
   Route(Rng& rng, Eigen::Vector2i start, int direction, double length, double pitch, double turn_radius);
 
   /// The point at arc length s (clamped to the route), moved `offset` metres to the right.
@@ -26,6 +27,8 @@ class Route {
   [[nodiscard]] double length() const { return length_; }
   /// Intersections passed through, in grid units, the start included.
   [[nodiscard]] const std::vector<Eigen::Vector2i>& intersections() const { return intersections_; }
+  /// [m] the arc length at each intersection (the middle of a turn's arc).
+  [[nodiscard]] const std::vector<double>& intersection_arcs() const { return intersection_arcs_; }
 
  private:
   struct Segment {
@@ -39,6 +42,7 @@ class Route {
 
   std::vector<Segment> segments_;
   std::vector<Eigen::Vector2i> intersections_;
+  std::vector<double> intersection_arcs_;
   double length_ = 0.0;
 };
 

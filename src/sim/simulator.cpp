@@ -51,7 +51,8 @@ void SimConfig::validate() const {
           c.turn_radius, "must be in (lane_offset, road_half_width]");
   require(c.block_pitch >= 2.0 * c.road_half_width + 40.0 && c.block_pitch <= 1000.0, "city.block_pitch",
           c.block_pitch, "must be in [2 road_half_width + 40, 1000]");
-  require(c.moving_cars >= 0 && c.moving_cars <= 10000, "city.moving_cars", c.moving_cars, "must be in [0, 10000]");
+  require(c.cars_per_intersection >= 0.0 && c.cars_per_intersection <= 50.0, "city.cars_per_intersection",
+          c.cars_per_intersection, "must be in [0, 50]");
   require(c.parked_car_chance >= 0.0 && c.parked_car_chance <= 1.0, "city.parked_car_chance",
           c.parked_car_chance, "must be in [0, 1]");
 }
@@ -112,7 +113,7 @@ SimFrame Simulator::frame(std::size_t index) const {
   for (const MovingCar& car : impl_->city.cars) {
     const std::size_t before = cars.size();
     car_bodies(impl_->city, car, c.city.lane_offset, frame.time, cars);
-    const bool out_of_reach = (cars[before].centre - origin).head<2>().norm() > lidar.max_range + 5.0;
+    const bool out_of_reach = cars.size() > before && (cars[before].centre - origin).head<2>().norm() > lidar.max_range + 5.0;
     if (out_of_reach) cars.resize(before);
   }
 

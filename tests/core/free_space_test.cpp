@@ -21,7 +21,7 @@ sim::SimConfig small_drive(std::size_t frames, std::uint64_t seed) {
   s.frames = frames;
   s.lidar.beams = 16;
   s.lidar.columns = 360;
-  s.city.moving_cars = 40;  // cars in view most frames
+  s.city.cars_per_intersection = 8.0;  // cars in view most frames
   return s;
 }
 

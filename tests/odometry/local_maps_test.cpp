@@ -84,7 +84,9 @@ TEST(LocalMaps, EveryMapAnswersAsBruteForceOverWhatItHoldsAlongADrive) {
       SCOPED_TRACE(map->name() + ", frame " + std::to_string(t));
       const std::vector<Eigen::Vector3d> held = map->points();
       EXPECT_EQ(map->size(), held.size());
-      if (map->exact()) EXPECT_EQ(sorted(held), eco_points);  // the same capped set as ECO's
+      if (map->exact()) {
+        EXPECT_EQ(sorted(held), eco_points);  // the same capped set as ECO's
+      }
       std::vector<Neighbor> out(queries.size() * k);
       std::vector<std::size_t> found(queries.size());
       map->knn(queries, k, out, found);

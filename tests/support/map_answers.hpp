@@ -20,7 +20,7 @@ inline sim::SimConfig small_drive(std::size_t frames) {
   s.frames = frames;
   s.lidar.beams = 16;
   s.lidar.columns = 360;
-  s.city.moving_cars = 40;
+  s.city.cars_per_intersection = 8.0;
   return s;
 }
 

@@ -28,6 +28,7 @@ TEST(Recorder, FindsWhatTheUpdateInsertedDroppedAndCleared) {
   sim::SimConfig drive;
   drive.frames = 10;
   drive.speed = 40.0;  // 4 m a frame: points leave the box every frame
+  drive.city.cars_per_intersection = 5.0;  // cars that move on, leaving space the scans see free
   drive.lidar.beams = 16;
   drive.lidar.columns = 600;
   Config config;
@@ -52,8 +53,11 @@ TEST(Recorder, FindsWhatTheUpdateInsertedDroppedAndCleared) {
     const FrameChanges found = recorder.record(t, tree.pose(), tree.points_with_attributes(), tree.voxel_keys(0.5),
                                                figures.back());
     ASSERT_EQ(found.inserted, u.inserted) << "frame " << t;
-    ASSERT_EQ(found.dropped, u.pruned) << "frame " << t;
-    ASSERT_EQ(found.cleared, u.cleared + u.aged_out) << "frame " << t;
+    // every point gone is found, as dropped (outside the new box) or cleared (inside it); the
+    // tree counts as cleared the arrivals it lets go before its box moves, some of which the
+    // move would have dropped too
+    ASSERT_EQ(found.dropped + found.cleared, u.pruned + u.cleared + u.aged_out) << "frame " << t;
+    ASSERT_GE(found.dropped, u.pruned) << "frame " << t;
     dropped += found.dropped;
     cleared += found.cleared;
 

@@ -41,7 +41,9 @@ struct CityModel {
   double road_half_width = 7.0;    ///< [m] centre line to kerb
   double lane_offset = 2.5;        ///< [m] centre line to the middle of the right-hand lane
   double turn_radius = 7.0;        ///< [m] of the centre line through a corner
-  int moving_cars = 16;            ///< cars that drive their own routes
+  /// Moving cars that set off from each intersection the sensor's route passes, on average
+  /// (Poisson), each on a route of its own, as the sensor nears it; one more leads the sensor.
+  double cars_per_intersection = 1.0;
   double parked_car_chance = 0.5;  ///< per kerb-side parking slot
 };
 
