@@ -40,6 +40,7 @@ demo: deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DECO_BUILD_PYTHON=ON -DPython_EXECUTABLE=$(PYTHON)
 	cmake --build $(BUILD) -j $(JOBS) --target eco_cli
 	@test -f $(DEMO_DATA)/poses.txt || $(BUILD)/bin/eco simulate --out $(DEMO_DATA) --frames $(DEMO_FRAMES) --seed 1
+	@rm -rf $(DEMO_OUT)  # each run's results in folders of their own: eco bench refuses an earlier run's
 	@printf '\n== 1. The robot: raw scans, 2 points kept per 0.1 m cell; update, voxel map, KNN ==\n'
 	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --preset robot-cap-0.1 --methods eco,pcl_octree,nanoflann,scan_pass \
 	  --brief --out $(DEMO_OUT)/robot

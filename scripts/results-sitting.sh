@@ -9,7 +9,7 @@ eco=build/bin/eco
 out=results/page
 sim=build/sim-default
 test -f $sim/poses.txt || $eco simulate --out $sim --frames 120 --seed 1 > /dev/null
-run() { local name=$1; shift; echo "== $name: eco bench $*" >&2; taskset -c 1 $eco bench "$@" --out $out/$name > /dev/null; }
+run() { local name=$1; shift; echo "== $name: eco bench $*" >&2; rm -rf $out/$name; taskset -c 1 $eco bench "$@" --out $out/$name > /dev/null; }
 sequences=()
 for d in $data/*/; do test -f "$d/poses.txt" && sequences+=("$(basename "$d")"); done
 for p in robot robot-cap-0.2 robot-cap-0.1; do

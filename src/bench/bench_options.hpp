@@ -23,7 +23,7 @@ struct BenchOptions {
   std::vector<std::string> methods{"eco",       "eco_exact",  "octree_base", "ioctree_global", "ioctree_target",
                                    "nanoflann", "pcl_octree", "scan_pass"};
   std::size_t frames = 0;              ///< frames to run; 0 = the whole sequence
-  std::filesystem::path out = "results";
+  std::filesystem::path out;  ///< the results folder; empty: results/bench-<date>-<time> (fresh_results_folder)
   Config config = paper_config();      ///< given to every method
   double map_resolution = 0.02;        ///< [m] static map voxel (paper: 0.9–1.5 M points per box)
   double voxel_resolution = 0.1;       ///< [m] voxel map timed and compared (Chamfer)

@@ -276,6 +276,26 @@ std::string brief_table(const std::vector<MethodSummary>& summaries) {
   return s.str();
 }
 
+std::filesystem::path fresh_results_folder(const std::filesystem::path& given) {
+  namespace fs = std::filesystem;
+  if (!given.empty()) {
+    for (const char* earlier : {"config.json", "summary.md"}) {
+      if (fs::exists(given / earlier)) {
+        throw io::Error(given.string(), "", std::string("holds an earlier run (") + earlier +
+                                                "): each run goes into a folder of its own; give another --out, or "
+                                                "remove this one");
+      }
+    }
+    return given;
+  }
+  const std::time_t t = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "bench-%Y%m%d-%H%M%S", std::gmtime(&t));
+  fs::path folder = fs::path("results") / stamp;
+  for (int n = 2; fs::exists(folder); ++n) folder = fs::path("results") / (std::string(stamp) + "-" + std::to_string(n));
+  return folder;
+}
+
 void write_results(const std::filesystem::path& folder, const BenchRun& run, const std::string& command_line) {
   std::error_code error;
   std::filesystem::create_directories(folder, error);

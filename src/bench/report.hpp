@@ -20,6 +20,12 @@
 
 namespace eco::bench {
 
+/// The folder a run's results go to, holding nothing of an earlier run's: `given`, new or empty
+/// (or holding other files), or without it results/bench-<UTC date>-<time> (-2, -3, ... when that
+/// is taken). Throws eco::io::Error when `given` holds an earlier run's config.json or summary.md,
+/// before the run rather than after it.
+[[nodiscard]] std::filesystem::path fresh_results_folder(const std::filesystem::path& given);
+
 /// Creates `folder` (and parents) and writes every file above. Throws eco::io::Error naming the
 /// file that could not be written.
 void write_results(const std::filesystem::path& folder, const BenchRun& run, const std::string& command_line);

@@ -42,6 +42,16 @@ check(ca["config"] == cb["config"] and ca["bench"] == cb["bench"], "the rerun's 
 check(ca["config"]["box_side"] == 18.0 and ca["config"]["insert_policy"] == "AllInBox", ca["config"])
 check(ca["config"]["density_cap"] == {"cell_size": 0.2, "max_points": 1}, ca["config"])
 
+# each run in a folder of its own: an earlier run's is refused before the run, and left as it was
+before = open(os.path.join(WORK, "A", "summary.json")).read()
+again = eco("bench", "--config", "A/config.json", "--out", "A", ok=False)
+check("A: holds an earlier run (config.json): each run goes into a folder of its own" in again.stderr, again.stderr)
+check(open(os.path.join(WORK, "A", "summary.json")).read() == before, "the earlier run was touched")
+fresh = [eco("bench", "--frames", "1", "--sim-frames", "2", "--methods", "eco", "--knn-queries", "0").stdout for _ in range(2)]
+folders = [line.split()[1] for out in fresh for line in out.splitlines() if line.startswith("results: ")]
+check(len(folders) == 2 and folders[0] != folders[1] and all(f.startswith("results/bench-") for f in folders), folders)
+check(all(os.path.exists(os.path.join(WORK, f, "summary.json")) for f in folders), folders)
+
 # a flag beside --config wins over the file
 eco("bench", "--config", "A/config.json", "--box_side", "16", "--frames", "2", "--out", "C")
 cc = load("C/config.json")

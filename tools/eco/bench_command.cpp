@@ -34,7 +34,7 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
       ->check(CLI::IsMember(baselines::method_names()))
       ->capture_default_str();
   cmd->add_option("--frames", o->frames, "frames to run (0 = all)")->capture_default_str();
-  cmd->add_option("--out", o->out, "results folder")->capture_default_str();
+  cmd->add_option("--out", o->out, "results folder, new or empty (default: results/bench-<date>-<time>, new each run)");
   cmd->add_option("--map-resolution", o->map_resolution, "static map voxel [m]")->capture_default_str();
   cmd->add_option("--voxel", o->voxel_resolution, "voxel map resolution [m]")->capture_default_str();
   cmd->add_option("--knn-queries", o->knn_queries, "KNN queries per frame")->capture_default_str();
@@ -85,6 +85,7 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
     std::printf("preset %s: %s, %s workload, voxel map at %g m\n", preset->c_str(), describe_settings(o->config).c_str(),
                 bench::to_string(o->workload).c_str(), o->voxel_resolution);
     std::fflush(stdout);  // the settings before the progress (on stderr), also into a pipe
+    o->out = bench::fresh_results_folder(o->out);  // refused before the run, not after it
     bench::pin_to_one_core();
     const bench::BenchRun run = bench::run_bench(*o, bench::terminal_progress());
     bench::write_results(o->out, run, command_line);
