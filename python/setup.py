@@ -4,10 +4,14 @@
 
 No download: CMake, a C++20 compiler, Eigen, liblzf, pybind11 and numpy come from Debian
 (`make python` installs them and runs the command above). The version is the CMake project's.
+
+ECO_CMAKE_BUILD_DIR=build (a build tree of this repository, `make build`'s) takes the module
+built there instead of compiling every source again; the package is configured as without it.
 """
 
 import os
 import re
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -44,8 +48,18 @@ class CMakeBuild(build_ext):
         ]
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
         subprocess.run(configure, check=True)
-        subprocess.run(["cmake", "--build", str(build_dir), "--target", "eco_python", "-j", jobs],
-                       check=True)
+        built = os.environ.get("ECO_CMAKE_BUILD_DIR")
+        if not built:
+            subprocess.run(["cmake", "--build", str(build_dir), "--target", "eco_python", "-j", jobs],
+                           check=True)
+            return
+        # a build tree of the repository's made with -DECO_BUILD_PYTHON=ON (make build's): its
+        # module, brought up to date there, instead of every source compiled again here
+        subprocess.run(["cmake", "--build", built, "--target", "eco_python", "-j", jobs], check=True)
+        modules = list((Path(built) / "python" / "eco").glob("_eco*.so"))
+        if len(modules) != 1:
+            sys.exit(f"ECO_CMAKE_BUILD_DIR={built} holds {len(modules)} modules python/eco/_eco*.so, not one")
+        shutil.copy2(modules[0], package_dir / Path(self.get_ext_fullpath(ext.name)).name)
 
 
 setup(
