@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <filesystem>
 #include <fstream>
@@ -253,6 +254,34 @@ TEST_F(RecordingTest, Ros1TopicsAreListedAndDamageNamed) {
   const std::string unindexed = error_of(cut);
   EXPECT_NE(unindexed.find("cut.bag: "), std::string::npos) << unindexed;
   EXPECT_NE(error_of(damaged_copy("ouster_none.mcap", "not_a.bag", [](std::string&) {})).find("not_a.bag: "), std::string::npos);
+  // records that declare more than they hold, refused by their framing before rosbag allocates it
+  const auto set_field = [](const char* name, std::uint32_t value) {
+    return [=](std::string& b) {
+      const std::size_t at = b.find(std::string(name) + "=");
+      ASSERT_NE(at, std::string::npos) << name;
+      std::memcpy(&b[at + std::strlen(name) + 1], &value, 4);
+    };
+  };
+  const std::string huge = error_of(damaged_copy("ouster_none.bag", "huge_chunk.bag", set_field("size", 0xFFFFFFF0u)));
+  EXPECT_NE(huge.find("huge_chunk.bag: byte "), std::string::npos) << huge;
+  EXPECT_NE(huge.find("a chunk declares more than 1 GiB once uncompressed"), std::string::npos) << huge;
+  const std::string cut_early = error_of(damaged_copy("ouster_none.bag", "cut_early.bag", [](std::string& b) { b.resize(5000); }));
+  EXPECT_NE(cut_early.find("cut_early.bag: byte 13: the bag header's index lies at byte "), std::string::npos) << cut_early;
+  EXPECT_NE(cut_early.find("past the end (5000 bytes): the bag is cut short (rosbag reindex mends that)"), std::string::npos)
+      << cut_early;
+  std::uint64_t second = 0;  // the record after the bag header: its header's length made 2 GB
+  const fs::path long_header = damaged_copy("ouster_none.bag", "long_header.bag", [&](std::string& b) {
+    std::uint32_t header = 0, data = 0;
+    std::memcpy(&header, &b[13], 4);
+    std::memcpy(&data, &b[13 + 4 + header], 4);
+    second = 13 + 4 + header + 4 + data;
+    const std::uint32_t declared = 0x7FFFFFFF;
+    std::memcpy(&b[second], &declared, 4);
+  });
+  const std::string too_long = error_of(long_header);
+  EXPECT_NE(too_long.find("long_header.bag: byte " + std::to_string(second) + ": a record's header declares 2147483647 bytes"),
+            std::string::npos)
+      << too_long;
 }
 
 TEST_F(RecordingTest, APoseTopicPlacesEachCloudAtItsStamp) {

@@ -1,4 +1,5 @@
 #include "io/ros/ros1_bag_store.hpp"
+#include "io/ros/ros1_bag_frames.hpp"
 
 #include <eco/io/error.hpp>
 
@@ -7,7 +8,9 @@
 #include <rosbag/view.h>
 #endif
 
+#include <exception>
 #include <map>
+#include <new>
 
 namespace eco::io::detail {
 
@@ -31,6 +34,12 @@ auto naming(const std::string& file, Work work) {
     throw Error(file, "", std::string("cannot be read as a ROS 1 bag: ") + e.what());
   } catch (const ros::Exception& e) {
     throw Error(file, "", std::string("cannot be read as a ROS 1 bag: ") + e.what());
+  } catch (const Error&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw Error(file, "", "cannot be read as a ROS 1 bag: a record declares more bytes than can be held");
+  } catch (const std::exception& e) {  // its decompressors' and boost's failures
+    throw Error(file, "", std::string("cannot be read as a ROS 1 bag: ") + e.what());
   }
 }
 
@@ -40,6 +49,7 @@ bool Ros1BagStore::available() { return true; }
 
 Ros1BagStore::Ros1BagStore(const std::filesystem::path& file) : name_(file.string()), bag_(std::make_unique<Bag>()) {
   if (!std::filesystem::is_regular_file(file)) throw Error(name_, "", "no such file");
+  check_ros1_bag_frames(file);
   naming(name_, [&] { bag_->bag.open(name_, rosbag::bagmode::Read); });
 }
 

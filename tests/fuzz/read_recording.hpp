@@ -1,0 +1,27 @@
+#pragma once
+// What the recording fuzzers share: the bytes written to a file of the container's extension, then
+// read as a recording, every cloud decoded; an eco::io::Error is the one way out allowed.
+
+#include <eco/io/error.hpp>
+#include <eco/io/recording.hpp>
+
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <fstream>
+#include <string>
+
+inline void read_as_recording(const std::uint8_t* data, std::size_t size, const std::string& path) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), std::streamsize(size));
+  try {
+    eco::io::Recording bag(path, {});
+    for (std::size_t i = 0; i < bag.size(); ++i) (void)bag.read(i);
+  } catch (const eco::io::Error&) {
+  }
+}
+
+/// A file of this process's own, ending in `extension`.
+inline std::string fuzz_file(const char* extension) {
+  return "/tmp/eco-fuzz-" + std::to_string(getpid()) + extension;
+}
