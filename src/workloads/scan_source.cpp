@@ -110,7 +110,8 @@ OpenedSource open_recording(const fs::path& path, const SourceOptions& options) 
   }
   out.has_poses = poses.has_value();
   for (const io::RecordedTopic& t : recording.pose_topics()) out.pose_topics.push_back(t.name + " (" + t.type + ")");
-  if (recording.has_tf()) out.pose_topics.push_back("tf (/tf and /tf_static, from --fixed-frame to the clouds' frame)");
+  static const std::string kTf = "tf (/tf and /tf_static, from --fixed-frame to the clouds' frame)";
+  if (recording.has_tf()) out.pose_topics.push_back(kTf);  // (a named string: GCC 12 warns falsely of a literal's)
   auto frames = std::make_unique<RecordingWorkload>(std::move(recording), std::move(poses));
   if (frames->outside_poses() > 0) {
     out.warnings.push_back(std::to_string(frames->outside_poses()) + " clouds lie outside the span of " +
