@@ -1,6 +1,7 @@
 """eco run's --save, --save-every and --load, as a user drives them: a drive run in two halves, the
-second loading the first's map, ends with the same map, byte for byte, as the drive run whole; a
-bad map file or a configuration flag beside --load is refused by name.
+second loading the first's map, ends with the same map, byte for byte, as the drive run whole (a
+folder's frames, and the simulator's drive made anew by each run); a bad map file or a
+configuration flag beside --load is refused by name.
 
 usage: cli_save_load_test.py ECO_CLI WORK_DIR"""
 
@@ -47,6 +48,13 @@ for t in range(5, 10):
         name = f"{t:06d}_{kind}.ply"
         check(read(f"whole/{name}") == read(f"rest/{name}"), f"{name} differs after loading")
 check(read("whole/map.eco") == read("rest/map.eco"), "the map saved after the last frame differs")
+
+# the same on the simulator's drive, made anew by each run for its own length: the world is the
+# seed's whatever the length, so half a drive saved and the rest loaded is the whole drive
+eco("run", "--frames", "6", "--out", "sim-whole", "--save", "sim-whole/map.eco", *clearing)
+eco("run", "--frames", "3", "--out", "sim-first", "--save", "sim-first/map.eco", *clearing)
+eco("run", "--frames", "6", "--out", "sim-rest", "--load", "sim-first/map.eco", "--save", "sim-rest/map.eco")
+check(read("sim-whole/map.eco") == read("sim-rest/map.eco"), "the simulator's drive in two halves ends in another map")
 
 # --config repeats a run that loaded a map: the same map again, saved where the first run saved it
 saved = read("rest/map.eco")
