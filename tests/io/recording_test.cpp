@@ -221,6 +221,24 @@ TEST_F(RecordingTest, DamageIsRefusedNamingTheFileAndByte) {
   }));
   EXPECT_NE(lz4.find("lz4.mcap: byte "), std::string::npos) << lz4;
 
+  // a chunk declaring 4 GiB once decompressed: refused before anything that size is allocated
+  for (const char* file : {"ouster_none.mcap", "ouster_lz4.mcap", "ouster_zstd.mcap"}) {
+    const std::string huge = error_of(damaged_copy(file, "huge.mcap", [](std::string& b) {
+      for (std::size_t at = 8; at + 9 <= b.size();) {  // records: op, u64 length, body
+        std::uint64_t length = 0;
+        std::memcpy(&length, &b[at + 1], 8);
+        if (b[at] == 0x06) {  // a chunk: start time, end time, then uncompressed_size
+          const std::uint64_t declared = std::uint64_t(1) << 32;
+          std::memcpy(&b[at + 9 + 16], &declared, 8);
+          return;
+        }
+        at += 9 + std::size_t(length);
+      }
+      FAIL() << "no chunk";
+    }));
+    EXPECT_NE(huge.find("uncompressed_size 4294967296 is not believable for "), std::string::npos) << file << ": " << huge;
+  }
+
   EXPECT_NE(error_of(recordings() / "missing.mcap").find("missing.mcap"), std::string::npos);
   const std::string not_db3 = error_of(damaged_copy("ouster_none.mcap", "not.db3", [](std::string&) {}));
   EXPECT_NE(not_db3.find("not.db3"), std::string::npos) << not_db3;

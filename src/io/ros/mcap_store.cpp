@@ -17,6 +17,7 @@ namespace {
 constexpr std::array<std::uint8_t, 8> kMagic{0x89, 'M', 'C', 'A', 'P', 0x30, '\r', '\n'};
 enum Op : std::uint8_t { Header = 1, Footer = 2, Schema = 3, ChannelOp = 4, Message = 5, Chunk = 6, DataEnd = 0x0F };
 constexpr std::uint64_t kMaxRecord = std::uint64_t(4) << 30;  // 4 GiB: past it a length is damage, not data
+constexpr std::uint64_t kMaxChunk = std::uint64_t(1) << 30;   // writers make chunks of a few MB
 
 std::uint32_t crc32_of(std::span<const std::uint8_t> bytes) {
   uLong crc = crc32(0L, Z_NULL, 0);
@@ -157,7 +158,16 @@ std::span<const std::uint8_t> McapStore::chunk_records(std::uint64_t chunk) {
   const std::string compression = in.string("the chunk's compression");
   const std::uint64_t size = in.read<std::uint64_t>("the chunk's records length");
   const std::span<const std::uint8_t> records = in.take(size, "the chunk's records");
-  if (uncompressed > kMaxRecord) in.fail_at(compression_at, "uncompressed_size " + std::to_string(uncompressed) + " is not believable");
+  // what the records could decompress to at most: lz4 makes at most 255 bytes of one, a zstd block
+  // (3 bytes, RLE) at most 128 KiB; a chunk is allocated at its declared size, so a size past
+  // that is refused before the allocation, not after it
+  const std::uint64_t most = compression.empty()   ? records.size()
+                              : compression == "lz4" ? 255 * std::uint64_t(records.size()) + 64
+                                                     : 43691 * std::uint64_t(records.size()) + 64;
+  if (uncompressed > kMaxChunk || uncompressed > most) {
+    in.fail_at(compression_at, "uncompressed_size " + std::to_string(uncompressed) + " is not believable for " +
+                                   std::to_string(records.size()) + " bytes of records");
+  }
   chunk_.resize(std::size_t(uncompressed));
   if (compression.empty()) {
     if (records.size() != uncompressed) in.fail_at(compression_at, "an uncompressed chunk whose length is not its uncompressed_size");
