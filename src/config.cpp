@@ -17,8 +17,11 @@ std::string shortest(double value) {
   return std::string(text, end);
 }
 
+[[noreturn]] void reject(const std::string& field, const std::string& value, const std::string& rule) {
+  throw std::invalid_argument("eco::Config: " + field + " = " + value + " is invalid: " + rule);
+}
 [[noreturn]] void reject(const std::string& field, double value, const std::string& rule) {
-  throw std::invalid_argument("eco::Config: " + field + " = " + shortest(value) + " is invalid: " + rule);
+  reject(field, shortest(value), rule);
 }
 
 constexpr int kDeepestLevel = 24;  // cells 2^-24 of the root: far below any LiDAR's noise
@@ -43,6 +46,20 @@ double Config::quantum() const {
 double Config::root_side() const {
   if (recentring == Recentring::Exact) return box_side;
   return quantum() * double(1u << quantum_levels);
+}
+
+double Region::reach() const {
+  switch (shape) {
+    case RegionShape::Cube: return 0.0;
+    case RegionShape::Ball: return radius;
+    case RegionShape::OrientedBox: {
+      const double along = std::max(ahead, behind), across = std::max(left, right), height = std::max(up, down);
+      // turning about the vertical sweeps the horizontal corners round; turning freely, every corner
+      return turn_with == TurnWith::Yaw ? std::max(std::hypot(along, across), height)
+                                        : std::sqrt(along * along + across * across + height * height);
+    }
+  }
+  return 0.0;
 }
 
 int SensorModel::rows() const {
@@ -89,6 +106,21 @@ void Config::validate() const {
   if (max_age_seconds > 0.0 && max_age_frames > 0) {
     reject("max_age_seconds", max_age_seconds,
            "and max_age_frames = " + std::to_string(max_age_frames) + " are both set: give the age limit in one unit");
+  }
+  if (region.shape != RegionShape::Cube) {
+    const char* name = region.shape == RegionShape::Ball ? "region.radius" : "region.ahead";
+    const double size = region.shape == RegionShape::Ball ? region.radius : region.ahead + region.behind;
+    if (!(size > 0.0)) reject(name, size, "gives an empty region: the ball needs a radius, the box a length");
+    if (region.reach() > box_side / 2) {
+      std::ostringstream why;
+      why << "makes a region that reaches " << region.reach() << " m from the sensor in some orientation, "
+          << "past the cube's half side box_side / 2 = " << box_side / 2 << " m: the cube must hold the region";
+      reject(name, region.shape == RegionShape::Ball ? region.radius : region.ahead, why.str());
+    }
+    if (insert_policy == InsertPolicy::ShiftInOnly) {
+      reject("insert_policy", "ShiftInOnly", "it takes in only what the cube newly covers; a region other than the "
+                                   "cube needs AllInBox");
+    }
   }
   if (density_cap.enabled()) {
     const double cell = density_cap.cell_size;

@@ -17,13 +17,15 @@ constexpr double kMaxCount = 4294967295.0;  // std::uint32_t
 constexpr std::array<std::string_view, 2> kRecentring{"Quantised", "Exact"};
 constexpr std::array<std::string_view, 2> kInsertPolicy{"ShiftInOnly", "AllInBox"};
 constexpr std::array<std::string_view, 2> kSwitch{"false", "true"};  // a Switch's values 0 and 1
+constexpr std::array<std::string_view, 3> kRegionShape{"cube", "ball", "oriented_box"};
+constexpr std::array<std::string_view, 2> kTurnWith{"yaw", "full"};
 
 // One accessor pair per field: the value as a double (a count or an enum's index are exact).
 #define ECO_FIELD_ACCESS(member, type)                                  \
   [](const Config& c) { return double(c.member); },                      \
   [](Config& c, double v) { c.member = type(v); }
 
-const std::array<ConfigField, 22> kFields{{
+const std::array<ConfigField, 31> kFields{{
     {"box_side", ConfigField::Kind::Real, "m", "L: side of the ego cube held around the sensor; typical 10-100",
      0.0, 1e5, true, {}, ECO_FIELD_ACCESS(box_side, double)},
     {"leaf_capacity", ConfigField::Kind::Count, "points", "N_max: a leaf with more points splits; typical 8-128",
@@ -86,6 +88,28 @@ const std::array<ConfigField, 22> kFields{{
      ECO_FIELD_ACCESS(sensor.horizontal_resolution, double)},
     {"sensor.max_range", ConfigField::Kind::Real, "m", "returns and held points farther away are not used", 0.0,
      1e6, true, {}, ECO_FIELD_ACCESS(sensor.max_range, double)},
+    {"region.shape", ConfigField::Kind::Choice, "",
+     "the region held about the sensor: cube (the box itself, world axes), ball (region.radius) or "
+     "oriented_box (region.ahead ... region.down in the sensor's axes)",
+     0.0, 2.0, false, kRegionShape, ECO_FIELD_ACCESS(region.shape, RegionShape)},
+    {"region.radius", ConfigField::Kind::Real, "m", "ball: the radius held about the sensor", 0.0, 1e5, false, {},
+     ECO_FIELD_ACCESS(region.radius, double)},
+    {"region.ahead", ConfigField::Kind::Real, "m", "oriented_box: held ahead of the sensor (its x)", 0.0, 1e5, false,
+     {}, ECO_FIELD_ACCESS(region.ahead, double)},
+    {"region.behind", ConfigField::Kind::Real, "m", "oriented_box: held behind the sensor", 0.0, 1e5, false, {},
+     ECO_FIELD_ACCESS(region.behind, double)},
+    {"region.left", ConfigField::Kind::Real, "m", "oriented_box: held to the sensor's left (its y)", 0.0, 1e5, false,
+     {}, ECO_FIELD_ACCESS(region.left, double)},
+    {"region.right", ConfigField::Kind::Real, "m", "oriented_box: held to the sensor's right", 0.0, 1e5, false, {},
+     ECO_FIELD_ACCESS(region.right, double)},
+    {"region.up", ConfigField::Kind::Real, "m", "oriented_box: held above the sensor (its z)", 0.0, 1e5, false, {},
+     ECO_FIELD_ACCESS(region.up, double)},
+    {"region.down", ConfigField::Kind::Real, "m", "oriented_box: held below the sensor", 0.0, 1e5, false, {},
+     ECO_FIELD_ACCESS(region.down, double)},
+    {"region.turn_with", ConfigField::Kind::Choice, "",
+     "oriented_box: yaw (turns about the world's vertical, a ground vehicle) or full (every turn of the "
+     "sensor, a drone or a hand-held sensor)",
+     0.0, 1.0, false, kTurnWith, ECO_FIELD_ACCESS(region.turn_with, TurnWith)},
     {"voxel_size", ConfigField::Kind::Real, "m",
      "Quantised only: the voxel size voxel maps are asked at (cells become voxels of voxel_size * 2^i); "
      "0 = the paper's quantum; at most box_side",

@@ -100,6 +100,35 @@ struct KeptAttributes {
   [[nodiscard]] bool any() const { return ids || intensity || time; }
 };
 
+/// The region the map holds about the sensor, inside the cube of side box_side (which holds the
+/// tree). Membership is decided on a held point's stored coordinates minus the sensor's position
+/// (both in the precision origin's frame, in double): d, turned into the region's axes by R^T.
+enum class RegionShape {
+  Cube,        ///< the cube itself, world axes: the paper's region (the default)
+  Ball,        ///< |d| <= radius: a LiDAR's reach (KISS-ICP's region)
+  OrientedBox  ///< -behind <= x <= ahead, -right <= y <= left, -down <= z <= up in the turned axes
+};
+/// How an oriented box turns with the sensor (R above).
+enum class TurnWith {
+  Yaw,  ///< about the world's vertical only, by the sensor's heading: a ground vehicle
+  Full  ///< with the sensor's whole orientation: a drone, a hand-held sensor
+};
+
+/// Config::region. Whatever its shape the region must fit in the cube in every orientation; a
+/// region other than the cube needs InsertPolicy::AllInBox (a turning region takes in scan points
+/// the cube held already).
+struct Region {
+  RegionShape shape = RegionShape::Cube;
+  double radius = 0.0;  ///< [m] Ball
+  /// [m] OrientedBox, in the sensor's axes (REP 103: x forward, y left, z up)
+  double ahead = 0.0, behind = 0.0, left = 0.0, right = 0.0, up = 0.0, down = 0.0;
+  TurnWith turn_with = TurnWith::Yaw;  ///< OrientedBox
+
+  /// [m] the farthest a point of the region lies from the sensor along any world axis, in any
+  /// orientation the region can take: what the cube's half side must hold.
+  [[nodiscard]] double reach() const;
+};
+
 /// Configuration of an EgoOctree.
 struct Config {
   double box_side = 20.0;  ///< L [m]: side of the ego cube held around the sensor; typical 10–100.
@@ -118,6 +147,7 @@ struct Config {
   KeptAttributes attributes{};  ///< per-point ids, intensities, times; none by default.
   FreeSpaceClearing clearing{};  ///< optional, off by default.
   SensorModel sensor{};  ///< the LiDAR's geometry (free-space clearing); an HDL-64E by default.
+  Region region{};  ///< the region held about the sensor; the cube (the paper's) by default.
   /// [m] Quantised only: the voxel size you will ask voxel maps at. The quantum is rounded up to
   /// voxel_size * 2^j, so cells of depth >= k are world voxels of side voxel_size * 2^i and
   /// voxel_keys(voxel_size * 2^i) walks nodes instead of points. 0 = the paper's quantum

@@ -22,7 +22,7 @@ struct ConfigField {
   double lo = 0.0;        ///< valid range [lo, hi] (Real and Count)
   double hi = 0.0;
   bool lo_open = false;   ///< (lo, hi] instead
-  std::span<const std::string_view> choices;  ///< Choice: value i's spelling (C++'s enumerator)
+  std::span<const std::string_view> choices;  ///< Choice: value i's spelling (C++'s enumerator, or for the region's its lower-case name)
   double (*get)(const Config&) = nullptr;     ///< the value; a Choice's index
   void (*set)(Config&, double) = nullptr;
 

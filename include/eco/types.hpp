@@ -93,7 +93,8 @@ struct UpdateStats {
   std::size_t skipped_nonfinite = 0;  ///< scan points with a NaN or infinite coordinate
   std::size_t skipped_by_policy = 0;  ///< finite scan points outside Box(p_t) (or outside R_in)
   std::size_t skipped_by_density = 0; ///< scan points refused by the density cap
-  std::size_t pruned = 0;             ///< held points that left the box (R_out)
+  std::size_t pruned = 0;             ///< held points that left the box or the region (R_out)
+  std::size_t region_tested = 0;      ///< held points tested one by one for the region's surface alone
   std::size_t skipped_by_age = 0;     ///< scan points already older than max_age_seconds
   std::size_t aged_out = 0;           ///< held points dropped by the age limit
   std::size_t cleared = 0;            ///< held points the scan saw through (free-space clearing)

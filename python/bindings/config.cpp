@@ -73,6 +73,20 @@ std::vector<Field<SensorModel>> Record<SensorModel>::fields() {
   };
 }
 
+std::vector<Field<Region>> Record<Region>::fields() {
+  return {
+      field("shape", &Region::shape, doc_of("region.shape")),
+      field("radius", &Region::radius, doc_of("region.radius")),
+      field("ahead", &Region::ahead, doc_of("region.ahead")),
+      field("behind", &Region::behind, doc_of("region.behind")),
+      field("left", &Region::left, doc_of("region.left")),
+      field("right", &Region::right, doc_of("region.right")),
+      field("up", &Region::up, doc_of("region.up")),
+      field("down", &Region::down, doc_of("region.down")),
+      field("turn_with", &Region::turn_with, doc_of("region.turn_with")),
+  };
+}
+
 std::vector<Field<Config>> Record<Config>::fields() {
   return {
       field("box_side", &Config::box_side, doc_of("box_side")),
@@ -93,6 +107,9 @@ std::vector<Field<Config>> Record<Config>::fields() {
       field("sensor", &Config::sensor,
             "SensorModel: the LiDAR's field of view and range image, as free-space clearing sees it (an "
             "HDL-64E by default)."),
+      field("region", &Config::region,
+            "Region: the region held about the sensor inside the cube (the cube itself by default): a ball or "
+            "a box turned with the sensor."),
       field("voxel_size", &Config::voxel_size, doc_of("voxel_size")),
   };
 }
@@ -112,6 +129,8 @@ void bind_config(py::module_& m) {
         list_parts(f.name, static_cast<const KeptAttributes*>(nullptr));
       } else if (f.name == "sensor") {
         list_parts(f.name, static_cast<const SensorModel*>(nullptr));
+      } else if (f.name == "region") {
+        list_parts(f.name, static_cast<const Region*>(nullptr));
       } else {
         listed.push_back(f.name);
       }
@@ -122,7 +141,7 @@ void bind_config(py::module_& m) {
   }
   m.def("config_fields", &config_fields_list,
         "The table of Config's fields (as C++, the eco command and config.json use it): one dict per field "
-        "with name (dotted for the parts' fields: density_cap., attributes., clearing., sensor.), kind ('real', 'count', 'choice' or 'switch': a bool), unit, doc, range, lo, hi, "
+        "with name (dotted for the parts' fields: density_cap., attributes., clearing., sensor., region.), kind ('real', 'count', 'choice' or 'switch': a bool), unit, doc, range, lo, hi, "
         "lo_open, choices and default.");
   py::enum_<Recentring>(m, "Recentring", "How the root cell follows the sensor.")
       .value("Quantised", Recentring::Quantised,
@@ -137,6 +156,14 @@ void bind_config(py::module_& m) {
       .value("AllInBox", InsertPolicy::AllInBox,
              "Every scan point inside Box(p_t): raw scans (pair with a density cap or age limit). "
              "Default.");
+  py::enum_<RegionShape>(m, "RegionShape", "The region's shape (Config.region.shape).")
+      .value("cube", RegionShape::Cube, "The cube itself, world axes: the paper's region. Default.")
+      .value("ball", RegionShape::Ball, "Points within region.radius of the sensor.")
+      .value("oriented_box", RegionShape::OrientedBox,
+             "A box in the sensor's axes (x ahead, y left, z up): region.ahead ... region.down.");
+  py::enum_<TurnWith>(m, "TurnWith", "How an oriented box turns with the sensor (Config.region.turn_with).")
+      .value("yaw", TurnWith::Yaw, "About the world's vertical, by the sensor's heading: a ground vehicle. Default.")
+      .value("full", TurnWith::Full, "With the sensor's whole orientation: a drone, a hand-held sensor.");
   py::enum_<Frame>(m, "Frame", "The frame in which query points are given and results returned.")
       .value("World", Frame::World, "The fixed world frame of the poses. Default.")
       .value("Ego", Frame::Ego, "World axes, origin at the current sensor position.");
@@ -156,6 +183,12 @@ void bind_config(py::module_& m) {
       m,
       "The LiDAR as free-space clearing sees it: a range image of rows of vertical_resolution degrees "
       "from vertical_fov_min to vertical_fov_max and columns of horizontal_resolution degrees.",
+      Access::ReadWrite);
+  bind_record<Region>(
+      m,
+      "The region the map holds about the sensor inside its cube: shape cube (the default), ball "
+      "(radius) or oriented_box (ahead, behind, left, right, up, down in the sensor's axes, turned by "
+      "turn_with).",
       Access::ReadWrite);
   bind_record<Config>(m,
                       "Configuration of an EgoOctree, field for field with eco::Config in C++.\n\n"

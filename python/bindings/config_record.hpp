@@ -1,5 +1,5 @@
 #pragma once
-// Config and its parts (DensityCap, KeptAttributes, FreeSpaceClearing, SensorModel) as records (records.hpp), for every binding that takes a Config.
+// Config and its parts (DensityCap, KeptAttributes, FreeSpaceClearing, SensorModel, Region) as records (records.hpp), for every binding that takes a Config.
 
 #include "records.hpp"
 
@@ -29,6 +29,12 @@ template <>
 struct Record<SensorModel> {
   static constexpr const char* name = "SensorModel";
   static std::vector<Field<SensorModel>> fields();  // config.cpp
+};
+
+template <>
+struct Record<Region> {
+  static constexpr const char* name = "Region";
+  static std::vector<Field<Region>> fields();  // config.cpp
 };
 
 template <>

@@ -5,6 +5,7 @@ import inspect
 import json
 import pickle
 
+import numpy as np
 import pytest
 
 import eco
@@ -24,6 +25,8 @@ CHANGED = {
     "clearing": eco.FreeSpaceClearing(enabled=True, margin=0.5, arrivals=True),
     "sensor": eco.SensorModel(vertical_fov_min=-15.0, vertical_fov_max=15.0, vertical_resolution=2.0,
                               horizontal_resolution=0.4, max_range=100.0),
+    "region": eco.Region(shape=eco.RegionShape.oriented_box, ahead=8.0, behind=2.0, left=3.0, right=3.0, up=2.0,
+                         down=1.5, turn_with=eco.TurnWith.full),
     "voxel_size": 0.25,
 }
 
@@ -47,6 +50,8 @@ def test_defaults_are_the_cpp_defaults():
         "clearing": {"enabled": False, "margin": 0.3, "arrivals": True},
         "sensor": {"vertical_fov_min": -24.9, "vertical_fov_max": 2.0, "vertical_resolution": 0.42,
                    "horizontal_resolution": 0.2, "max_range": 100.0},
+        "region": {"shape": "cube", "radius": 0.0, "ahead": 0.0, "behind": 0.0, "left": 0.0, "right": 0.0,
+                   "up": 0.0, "down": 0.0, "turn_with": "yaw"},
         "voxel_size": 0.1,
     }
 
@@ -87,6 +92,19 @@ def test_enums_by_name_in_any_case_and_nested_records_as_dicts():
     assert config.density_cap == eco.DensityCap(cell_size=0.1, max_points=2)
     config.density_cap = None  # None: the defaults, i.e. off
     assert config.density_cap.max_points == 0
+
+
+def test_a_region_that_turns_with_the_sensor():
+    # a box ahead of the sensor, turned by its heading: a point 5 m ahead is held, 5 m behind is not
+    tree = eco.EgoOctree(region={"shape": "oriented_box", "ahead": 8, "behind": 2, "left": 3, "right": 3, "up": 2,
+                                 "down": 2})
+    facing_y = np.array([[0, -1, 0, 0], [1, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]], dtype=float)  # heading +90 degrees
+    tree.update(facing_y, np.array([[5, 0, 0], [-5, 0, 0]], dtype=np.float32))  # sensor frame: ahead, behind
+    np.testing.assert_allclose(tree.points(), [[0.0, 5.0, 0.0]], atol=1e-6)
+    with pytest.raises(ValueError, match="region.radius = 12 is invalid: makes a region that reaches 12 m"):
+        eco.Config(region={"shape": "ball", "radius": 12})
+    with pytest.raises(ValueError, match="insert_policy = ShiftInOnly is invalid"):
+        eco.Config(insert_policy="ShiftInOnly", region={"shape": "ball", "radius": 5})
 
 
 def test_nested_fields_assign_in_place():
@@ -228,6 +246,8 @@ def test_a_config_json_section_is_a_config():
                "clearing": {"enabled": True, "margin": 0.3, "arrivals": True},
                "sensor": {"vertical_fov_min": -24.9, "vertical_fov_max": 2.0, "vertical_resolution": 0.42,
                           "horizontal_resolution": 0.2, "max_range": 100.0},
+               "region": {"shape": "ball", "radius": 8.0, "ahead": 0.0, "behind": 0.0, "left": 0.0, "right": 0.0,
+                          "up": 0.0, "down": 0.0, "turn_with": "yaw"},
                "voxel_size": 0.2}
     config = eco.Config(**json.loads(json.dumps(written)))
     assert config.to_dict() == written

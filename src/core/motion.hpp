@@ -3,6 +3,7 @@
 // with it (src/update); stages 2-4 and the baselines read it instead of the tree's state, and the
 // tree keeps the current frame's.
 
+#include "core/ego_region.hpp"
 #include "core/geometry.hpp"
 
 #include <eco/config.hpp>
@@ -55,6 +56,10 @@ struct Motion {
   /// (old origin - new origin) when the precision origin moved this frame: held points move by it.
   std::optional<Eigen::Vector3d> origin_shift;
   Clock clock;                  ///< the map's clock after this frame's scan
+  std::optional<EgoRegion> region;  ///< Config::region this frame, anchor frame; none for the cube
+  /// The region is not the last frame's (held points, all in that one, need testing against it):
+  /// a ball spinning in place, or a box standing still, touches no point.
+  bool region_moved = false;
 
   /// The world point of stored (anchor-frame float) coordinates.
   [[nodiscard]] Eigen::Vector3d to_world(const std::array<float, 3>& stored) const {

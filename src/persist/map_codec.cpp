@@ -43,6 +43,13 @@ void put_config(ByteWriter& out, const Config& c) {
   out.put(c.sensor.horizontal_resolution);
   out.put(c.sensor.max_range);
   out.put(c.voxel_size);
+  if (c.region.shape == RegionShape::Cube) return;  // version 1: no region section
+  out.put(std::uint8_t(c.region.shape));
+  for (const double v : {c.region.radius, c.region.ahead, c.region.behind, c.region.left, c.region.right, c.region.up,
+                         c.region.down}) {
+    out.put(v);
+  }
+  out.put(std::uint8_t(c.region.turn_with));
 }
 
 /// A byte that must be 0 or 1 (a flag, or one of two enumerators).
@@ -53,7 +60,7 @@ bool get_flag(ByteReader& in, const char* what) {
   return v == 1;
 }
 
-Config get_config(ByteReader& in) {
+Config get_config(ByteReader& in, std::uint32_t version) {
   const std::size_t start = in.offset();
   Config c;
   c.box_side = in.get<double>("box_side");
@@ -78,6 +85,17 @@ Config get_config(ByteReader& in) {
   c.sensor.horizontal_resolution = in.get<double>("sensor.horizontal_resolution");
   c.sensor.max_range = in.get<double>("sensor.max_range");
   c.voxel_size = in.get<double>("voxel_size");
+  if (version == kMapFileVersionWithRegion) {
+    const std::size_t at = in.offset();
+    const auto shape = in.get<std::uint8_t>("region.shape");
+    if (shape < 1 || shape > 2) ByteReader::fail_at(at, "region.shape = " + std::to_string(shape) + " is neither ball nor oriented_box");
+    c.region.shape = RegionShape(shape);
+    for (double* v : {&c.region.radius, &c.region.ahead, &c.region.behind, &c.region.left, &c.region.right, &c.region.up,
+                      &c.region.down}) {
+      *v = in.get<double>("region's extents");
+    }
+    c.region.turn_with = get_flag(in, "region.turn_with") ? TurnWith::Full : TurnWith::Yaw;
+  }
   try {
     c.validate();
   } catch (const std::invalid_argument& e) {
@@ -143,6 +161,7 @@ Motion get_motion(ByteReader& in, const Config& config) {
     ByteReader::fail_at(clock_at, "clock: its latest time and origin do not fit together");
   }
   m.box = ego_box(m.pose.translation(), m.anchor, config.box_side);
+  m.region = EgoRegion::at(config.region, m.pose, m.anchor);
   return m;
 }
 
@@ -266,7 +285,7 @@ std::string encode_map(const Tree& tree, const ClearingState* clearing) {
   // room for it all at once: the points are most of it, and growing would copy them
   out.bytes().reserve(1024 + 5 * parts.nodes.size() + 4 * columns * parts.points.x.size() + image);
   out.put_bytes(kMagic);
-  out.put(kMapFileVersion);
+  out.put(tree.config().region.shape == RegionShape::Cube ? kMapFileVersion : kMapFileVersionWithRegion);
   out.put(std::uint64_t(0));  // the payload's length, once known
   put_config(out, tree.config());
   put_motion(out, tree.motion());
@@ -286,9 +305,9 @@ DecodedMap decode_map(std::string_view bytes) {
     if (header.get<char>("magic") != expected) ByteReader::fail_at(0, "not a map file (wrong magic)");
   }
   const auto version = header.get<std::uint32_t>("version");
-  if (version != kMapFileVersion) {
-    ByteReader::fail_at(8, "version " + std::to_string(version) + "; this library reads version " +
-                               std::to_string(kMapFileVersion));
+  if (version != kMapFileVersion && version != kMapFileVersionWithRegion) {
+    ByteReader::fail_at(8, "version " + std::to_string(version) + "; this library reads versions " +
+                               std::to_string(kMapFileVersion) + " and " + std::to_string(kMapFileVersionWithRegion));
   }
   const auto payload = header.get<std::uint64_t>("payload length");
   if (bytes.size() < kHeaderBytes + kChecksumBytes) {
@@ -305,7 +324,7 @@ DecodedMap decode_map(std::string_view bytes) {
   if (checksum(bytes.substr(0, end)) != stored) ByteReader::fail_at(end, "checksum mismatch: the file is corrupted");
 
   ByteReader in(bytes.substr(0, end), kHeaderBytes);
-  const Config config = get_config(in);
+  const Config config = get_config(in, version);
   const Motion motion = get_motion(in, config);
   DecodedMap map;
   map.tree = get_tree(in, config, motion);

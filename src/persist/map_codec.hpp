@@ -11,8 +11,10 @@
 
 namespace eco::detail {
 
-/// The version this library writes and reads.
+/// The versions this library writes and reads: 1 for a map that holds the cube, 2 (the region's
+/// fields after the configuration's) for a map that holds another region.
 inline constexpr std::uint32_t kMapFileVersion = 1;
+inline constexpr std::uint32_t kMapFileVersionWithRegion = 2;
 
 /// The file's bytes for `tree` and, while clearing is on, its `clearing` state.
 std::string encode_map(const Tree& tree, const ClearingState* clearing);

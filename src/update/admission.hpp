@@ -1,6 +1,6 @@
 #pragma once
-// Which scan points an update takes in (DESIGN.md §1): finite, inside Box(p_t), and — under
-// ShiftInOnly — outside the previous box. Shared by ECO's shift-in stage and the baselines, so
+// Which scan points an update takes in (DESIGN.md §1): finite, inside Box(p_t) and the region
+// (Config::region), and — under ShiftInOnly — outside the previous box. Shared by ECO's shift-in stage and the baselines, so
 // every method of the benchmark takes in the same points.
 
 #include "core/geometry.hpp"
@@ -62,6 +62,7 @@ struct Admission {
   Eigen::Vector3d anchor;    // the precision origin
   Box box;                   // Box(p_t), anchor frame
   std::optional<Box> previous;  // set under ShiftInOnly once a previous box exists
+  std::optional<EgoRegion> region;  // Config::region this frame; none for the cube
 
   /// Calls take_group(AdmittedGroup&) for each group of scan points that admits some, in scan
   /// order (the group may be changed: it is the caller's until the next call); counts the
@@ -72,6 +73,7 @@ struct Admission {
     AdmittedGroup group;
     for (std::size_t begin = 0; begin < scan.count; begin += kAdmitGroup) {
       admit_group(f, scan, begin, std::min(kAdmitGroup, scan.count - begin), group);
+      if (region) keep_in_region(group);
       stats.skipped_nonfinite += group.nonfinite;
       stats.skipped_by_policy += group.refused;
       if (group.size > 0) take_group(group);
@@ -84,6 +86,19 @@ struct Admission {
     for_each_group(scan, stats, [&](const AdmittedGroup& group) {
       for (std::size_t j = 0; j < group.size; ++j) take(group.points[j], std::size_t(group.index[j]));
     });
+  }
+
+  /// The group's points in the region, in order; the others counted as refused.
+  void keep_in_region(AdmittedGroup& group) const {
+    std::size_t kept = 0;
+    for (std::size_t j = 0; j < group.size; ++j) {
+      if (!region->contains(group.points[j])) continue;
+      group.points[kept] = group.points[j];
+      group.index[kept] = group.index[j];
+      ++kept;
+    }
+    group.refused += group.size - kept;
+    group.size = kept;
   }
 
   [[nodiscard]] AdmissionFrame frame() const {
@@ -103,7 +118,7 @@ struct Admission {
 /// under ShiftInOnly once a previous box exists, all of Box(p_t) otherwise.
 inline Admission admission(const Motion& motion, InsertPolicy policy) {
   return {motion.pose, motion.anchor, motion.box,
-          policy == InsertPolicy::ShiftInOnly ? motion.previous : std::nullopt};
+          policy == InsertPolicy::ShiftInOnly ? motion.previous : std::nullopt, motion.region};
 }
 
 }  // namespace eco::detail

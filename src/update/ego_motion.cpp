@@ -19,7 +19,7 @@ std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion, UpdateStats& s
   const Eigen::Vector3d shift = *motion.origin_shift;  // exact: multiples of kOriginStep
   for (StoredPoint& s : held) s.p = rebased(s.p, shift);
   std::erase_if(held, [&](const StoredPoint& s) {
-    if (!leaves(tree, s, motion.box, stats)) return false;
+    if (!leaves(tree, s, motion, stats)) return false;
     tree.forget(s);
     return true;
   });
@@ -27,6 +27,12 @@ std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion, UpdateStats& s
   stats.rebased = true;
   stats.rebuilt_subtrees += 1;
   return held;
+}
+
+/// Config::region at `motion`'s pose, and whether it moved since the `last` frame's.
+void place_region(Motion& motion, const Region& region, const Motion& last) {
+  motion.region = EgoRegion::at(region, motion.pose, motion.anchor);
+  motion.region_moved = motion.region && !(last.region && *last.region == *motion.region);
 }
 
 /// The latest of the scan's times; -inf when it has none or the tree keeps none.
@@ -44,14 +50,17 @@ EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor
   EgoMotion out{next_motion(world_T_sensor, tree.motion(), tree.config().box_side, true,
                              latest_time(scan, tree.config())),
                  {}};
+  place_region(out.motion, tree.config().region, tree.motion());
   tree.set_motion(out.motion);  // the density keys of the re-expressed points need the new origin
   if (out.motion.origin_shift) out.displaced = rebase(tree, out.motion, stats);
   return out;
 }
 
 Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  tree.set_motion(next_motion(world_T_sensor, tree.motion(), tree.config().box_side, /*moves_origin=*/false,
-                              latest_time(scan, tree.config())));
+  Motion motion = next_motion(world_T_sensor, tree.motion(), tree.config().box_side, /*moves_origin=*/false,
+                              latest_time(scan, tree.config()));
+  place_region(motion, tree.config().region, tree.motion());
+  tree.set_motion(motion);
   return tree.motion();
 }
 

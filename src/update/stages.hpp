@@ -33,12 +33,13 @@ EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor
 /// false in next_motion): nothing is ever displaced.
 Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
 
-/// 2. Shift-out (R_out): drop subtrees whose bounds left motion.box, filter the leaves that
-///    straddle it, and drop points past the age limit. Subtrees wholly inside are not visited.
+/// 2. Shift-out (R_out): drop subtrees whose bounds left motion.box (or motion.region), filter the
+///    leaves that straddle their surface, and drop points past the age limit. Subtrees wholly
+///    inside are not visited.
 void prune_shift_out(Tree& tree, const Motion& motion, UpdateStats& stats);
-/// Whether point `s` leaves the map this frame (Tree::stays false under `box`); one that does is
-/// counted in `stats`, as pruned when outside `box`, else as aged out.
-bool leaves(const Tree& tree, const StoredPoint& s, const Box& box, UpdateStats& stats);
+/// Whether point `s` leaves the map this frame: outside motion.box or motion.region, or past the
+/// age limit; one that does is counted in `stats`, as pruned when outside, else as aged out.
+bool leaves(const Tree& tree, const StoredPoint& s, const Motion& motion, UpdateStats& stats);
 
 /// 2b. Free-space clearing (Config::clearing, off by default; src/clearing/clearing.hpp): the held
 ///    points the scan sees through leave, from the tree and from `displaced`.

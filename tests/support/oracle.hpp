@@ -81,7 +81,7 @@ class Oracle {
     const std::uint32_t cutoff = age > 0 && frame_ > age ? frame_ - age : 0;
     if (memory_ == Memory::TheBox) {
       std::erase_if(held_, [&](const Held& h) {
-        return !in_box(position_, h.p) || h.stamp < cutoff || double(h.time) < time_cutoff;
+        return !in_box(position_, h.p) || !in_region(pose, h.p) || h.stamp < cutoff || double(h.time) < time_cutoff;
       });
     } else if (memory_ == Memory::Nothing) {
       held_.clear();
@@ -97,7 +97,7 @@ class Oracle {
       const Eigen::Vector3d w = r * s.cast<double>() + t;
       const std::array<float, 3> f{float(w[0] - origin_[0]), float(w[1] - origin_[1]),
                                    float(w[2] - origin_[2])};
-      if (!in_box(position_, f)) continue;
+      if (!in_box(position_, f) || !in_region(pose, f)) continue;
       if (cfg_.insert_policy == InsertPolicy::ShiftInOnly && memory_ != Memory::Nothing && had_box &&
           in_box(previous, f)) {
         continue;
@@ -279,6 +279,23 @@ class Oracle {
     row = std::min(rows - 1, int(std::floor((elevation - m.vertical_fov_min) / m.vertical_resolution)));
     column = int(std::floor((azimuth + 180.0) / m.horizontal_resolution)) % columns;
     return true;
+  }
+
+  /// Config::region at `pose`, as the contract words it: d = f - the sensor (both from the
+  /// precision origin), turned into the region's axes, against the extents (closed).
+  [[nodiscard]] bool in_region(const Eigen::Isometry3d& pose, const std::array<float, 3>& f) const {
+    const Region& r = cfg_.region;
+    if (r.shape == RegionShape::Cube) return true;
+    const Eigen::Vector3d d = Eigen::Vector3d(double(f[0]), double(f[1]), double(f[2])) - (pose.translation() - origin_);
+    if (r.shape == RegionShape::Ball) return d.squaredNorm() <= r.radius * r.radius;
+    Eigen::Matrix3d turn = pose.linear();
+    if (r.turn_with == TurnWith::Yaw) {
+      turn = Eigen::AngleAxisd(std::atan2(turn(1, 0), turn(0, 0)), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    }
+    const Eigen::Matrix3d to_local = turn.transpose();
+    const Eigen::Vector3d l = to_local * d;
+    return l.x() >= -r.behind && l.x() <= r.ahead && l.y() >= -r.right && l.y() <= r.left && l.z() >= -r.down &&
+           l.z() <= r.up;
   }
 
   [[nodiscard]] bool in_box(const Eigen::Vector3d& centre, const std::array<float, 3>& f) const {

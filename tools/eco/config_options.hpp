@@ -29,6 +29,12 @@ inline std::string describe_settings(const Config& c) {
     s << "off";
   }
   s << ", free-space clearing " << (!c.clearing.enabled ? "off" : c.clearing.arrivals ? "on, with arrivals" : "on");
+  const Region& r = c.region;
+  if (r.shape == RegionShape::Ball) s << ", region: a ball of " << r.radius << " m";
+  if (r.shape == RegionShape::OrientedBox) {
+    s << ", region: a box " << r.ahead << " m ahead, " << r.behind << " behind, " << r.left << " left, " << r.right
+      << " right, " << r.up << " up, " << r.down << " down, turned by " << (r.turn_with == TurnWith::Yaw ? "heading" : "every turn");
+  }
   return s.str();
 }
 
