@@ -211,7 +211,8 @@ DecodedCloud CloudDecoder::decode(const PointCloud2& cloud, const std::string& s
   // float32 coordinates, as most drivers write them, read without going through double
   const bool floats = xyz[0]->type == FieldType::Float32 && xyz[1]->type == FieldType::Float32 &&
                       xyz[2]->type == FieldType::Float32;
-  for (std::uint32_t row = 0; row < cloud.height; ++row) {
+  const std::uint32_t rows = points > 0 ? cloud.height : 0;  // a cloud 0 wide and 4 billion high holds nothing to walk
+  for (std::uint32_t row = 0; row < rows; ++row) {
     const std::uint8_t* p = cloud.data.data() + std::size_t(row) * cloud.row_step;
     for (std::uint32_t column = 0; column < cloud.width; ++column, p += cloud.point_step) {
       Eigen::Vector3f v;
