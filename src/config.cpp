@@ -62,6 +62,24 @@ double Region::reach() const {
   return 0.0;
 }
 
+Region Region::sized(double growth, double scale) const {
+  Region r = *this;
+  if (shape == RegionShape::Ball) r.radius += growth;
+  if (shape == RegionShape::OrientedBox) r.ahead += growth;
+  for (double* extent : {&r.radius, &r.ahead, &r.behind, &r.left, &r.right, &r.up, &r.down}) *extent *= scale;
+  return r;
+}
+
+double Region::max_growth(double half_side) const {
+  if (shape == RegionShape::Cube || reach() > half_side) return 0.0;
+  double fits = 0.0, too_far = half_side * 2;  // the reach grows with the growth, at least as fast as ahead does
+  for (int step = 0; step < 60; ++step) {
+    const double middle = (fits + too_far) / 2;
+    (sized(middle, 1.0).reach() <= half_side ? fits : too_far) = middle;
+  }
+  return fits;
+}
+
 int SensorModel::rows() const {
   return int(std::ceil((vertical_fov_max - vertical_fov_min) / vertical_resolution));
 }
@@ -121,7 +139,17 @@ void Config::validate() const {
       reject("insert_policy", "ShiftInOnly", "it takes in only what the cube newly covers; a region other than the "
                                    "cube needs AllInBox");
     }
+  } else {
+    if (region.lookahead != 0.0) {
+      reject("region.lookahead", region.lookahead, "needs region.shape = ball or oriented_box: the cube does not grow");
+    }
+    if (region.max_points != 0) {
+      reject("region.max_points", double(region.max_points),
+             "needs region.shape = ball or oriented_box: the cube does not shrink (a ball of radius box_side / 2 "
+             "holds the most a budget can)");
+    }
   }
+
   if (density_cap.enabled()) {
     const double cell = density_cap.cell_size;
     if (cell <= 0.0) reject("density_cap.cell_size", cell, "must be > 0 m while density_cap.max_points > 0");

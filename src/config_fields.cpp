@@ -25,7 +25,7 @@ constexpr std::array<std::string_view, 2> kTurnWith{"yaw", "full"};
   [](const Config& c) { return double(c.member); },                      \
   [](Config& c, double v) { c.member = type(v); }
 
-const std::array<ConfigField, 31> kFields{{
+const std::array<ConfigField, 34> kFields{{
     {"box_side", ConfigField::Kind::Real, "m", "L: side of the ego cube held around the sensor; typical 10-100",
      0.0, 1e5, true, {}, ECO_FIELD_ACCESS(box_side, double)},
     {"leaf_capacity", ConfigField::Kind::Count, "points", "N_max: a leaf with more points splits; typical 8-128",
@@ -110,6 +110,16 @@ const std::array<ConfigField, 31> kFields{{
      "oriented_box: yaw (turns about the world's vertical, a ground vehicle) or full (every turn of the "
      "sensor, a drone or a hand-held sensor)",
      0.0, 1.0, false, kTurnWith, ECO_FIELD_ACCESS(region.turn_with, TurnWith)},
+    {"region.lookahead", ConfigField::Kind::Real, "s",
+     "ball or oriented_box: ahead (a ball: radius) grows by the smoothed speed times this, up to what the cube "
+     "holds; 0 = a fixed size",
+     0.0, 1e3, false, {}, ECO_FIELD_ACCESS(region.lookahead, double)},
+    {"region.frame_period", ConfigField::Kind::Real, "s",
+     "the time between scans for the lookahead's speed when scans carry no times", 0.0, 1e3, true, {},
+     ECO_FIELD_ACCESS(region.frame_period, double)},
+    {"region.max_points", ConfigField::Kind::Count, "points",
+     "ball or oriented_box: the most points held; the region shrinks about the sensor to fit; 0 = no budget",
+     0.0, kMaxCount, false, {}, ECO_FIELD_ACCESS(region.max_points, std::uint32_t)},
     {"voxel_size", ConfigField::Kind::Real, "m",
      "Quantised only: the voxel size voxel maps are asked at (cells become voxels of voxel_size * 2^i); "
      "0 = the paper's quantum; at most box_side",

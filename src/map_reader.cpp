@@ -113,12 +113,23 @@ std::vector<Neighbor> MapReader::radius(const Eigen::Vector3d& query, double rad
 }
 
 std::vector<Eigen::Vector3d> MapReader::box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, Frame frame) const {
-  return detail::box_query(held(), lo, hi, frame);
+  return detail::box_query(held(), Eigen::Isometry3d::Identity(), lo, hi, frame);
 }
 
 std::vector<HeldPoint> MapReader::box_with_attributes(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                                                      Frame frame) const {
-  return detail::box_held_query(held(), lo, hi, frame);
+  return detail::box_held_query(held(), Eigen::Isometry3d::Identity(), lo, hi, frame);
+}
+
+std::vector<Eigen::Vector3d> MapReader::oriented_box(const Eigen::Isometry3d& box_pose, const Eigen::Vector3d& lo,
+                                                     const Eigen::Vector3d& hi, Frame frame) const {
+  return detail::box_query(held(), box_pose, lo, hi, frame);
+}
+
+std::vector<HeldPoint> MapReader::oriented_box_with_attributes(const Eigen::Isometry3d& box_pose,
+                                                               const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                                               Frame frame) const {
+  return detail::box_held_query(held(), box_pose, lo, hi, frame);
 }
 
 std::vector<VoxelKey> MapReader::voxel_keys(double resolution) const {
@@ -127,13 +138,15 @@ std::vector<VoxelKey> MapReader::voxel_keys(double resolution) const {
 
 std::vector<Eigen::Vector3d> MapReader::voxelize(double resolution, Frame frame) const {
   const std::vector<VoxelKey> keys = voxel_keys(resolution);
-  const Eigen::Vector3d shift = frame == Frame::Ego ? Eigen::Vector3d(pose().translation()) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d shift = frame == Frame::World ? Eigen::Vector3d::Zero() : Eigen::Vector3d(pose().translation());
+  const Eigen::Matrix3d turn = frame == Frame::Sensor ? Eigen::Matrix3d(pose().linear().transpose())
+                                                      : Eigen::Matrix3d::Identity();
   std::vector<Eigen::Vector3d> centres;
   centres.reserve(keys.size());
   for (const VoxelKey& k : keys) {
-    centres.push_back(Eigen::Vector3d((double(k.x) + 0.5) * resolution, (double(k.y) + 0.5) * resolution,
-                                      (double(k.z) + 0.5) * resolution) -
-                      shift);
+    const Eigen::Vector3d centre((double(k.x) + 0.5) * resolution, (double(k.y) + 0.5) * resolution,
+                                 (double(k.z) + 0.5) * resolution);
+    centres.push_back(frame == Frame::Sensor ? Eigen::Vector3d(turn * (centre - shift)) : Eigen::Vector3d(centre - shift));
   }
   return centres;
 }

@@ -123,10 +123,28 @@ struct Region {
   /// [m] OrientedBox, in the sensor's axes (REP 103: x forward, y left, z up)
   double ahead = 0.0, behind = 0.0, left = 0.0, right = 0.0, up = 0.0, down = 0.0;
   TurnWith turn_with = TurnWith::Yaw;  ///< OrientedBox
+  /// [s] the region leads the sensor: `ahead` (a ball: `radius`) grows by the sensor's speed
+  /// (smoothed over the last frames) times lookahead, up to what the cube holds. It grows at once
+  /// to 1.25x what the speed asks and shrinks only once the speed asks for under 1/1.25^2 of it,
+  /// so a speed near a threshold does not make it breathe every frame. 0 = a fixed size.
+  double lookahead = 0.0;
+  /// [s] the time between scans, for the speed, when the scans carry no times (ScanView::times;
+  /// with times, the gap between the latest points of two scans): a 10 Hz LiDAR's by default.
+  double frame_period = 0.1;
+  /// A hard budget of held points; 0 = none. When more would be held after a frame, the region
+  /// shrinks about the sensor by one uniform scale, the largest in steps of 1 % at which the held
+  /// points fit (nothing held if not even 1 % fits), and each frame starts again from the whole
+  /// region, so it grows back as the scene thins.
+  std::uint32_t max_points = 0;
 
   /// [m] the farthest a point of the region lies from the sensor along any world axis, in any
   /// orientation the region can take: what the cube's half side must hold.
   [[nodiscard]] double reach() const;
+  /// This region grown by `growth` [m] ahead (a ball: all round), then scaled by `scale` about the
+  /// sensor: each extent (extent + growth) * scale.
+  [[nodiscard]] Region sized(double growth, double scale) const;
+  /// [m] the most the lookahead may grow this region while its reach stays within `half_side`.
+  [[nodiscard]] double max_growth(double half_side) const;
 };
 
 /// Configuration of an EgoOctree.

@@ -62,6 +62,18 @@ class MapReader {
   [[nodiscard]] std::vector<HeldPoint> box_with_attributes(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                                                            Frame frame = Frame::World) const;
 
+  /// Held points inside the closed box [lo, hi] of the axes `box_pose` (rigid) places in `frame`,
+  /// returned in `frame`: a box turned any way — what lies up to 2 m ahead of the bumper is
+  /// oriented_box(sensor_T_bumper, {0, -1, -0.5}, {2, 1, 1.5}, Frame::Sensor). box(lo, hi,
+  /// Frame::Sensor) is the box in the sensor's own axes. Subtrees wholly inside are taken whole,
+  /// wholly outside skipped; the others tested point by point.
+  [[nodiscard]] std::vector<Eigen::Vector3d> oriented_box(const Eigen::Isometry3d& box_pose, const Eigen::Vector3d& lo,
+                                                          const Eigen::Vector3d& hi, Frame frame = Frame::World) const;
+  /// The same points with their attributes.
+  [[nodiscard]] std::vector<HeldPoint> oriented_box_with_attributes(const Eigen::Isometry3d& box_pose,
+                                                                    const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                                                    Frame frame = Frame::World) const;
+
   /// Keys of the occupied voxels of the world-aligned grid of side `resolution` [m], unique, in no
   /// particular order (sort them if you need one). Voxel i on an axis holds the stored coordinate
   /// f (offset from the precision origin o) with i*res - o <= f < (i+1)*res - o, walls in double.

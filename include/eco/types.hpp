@@ -39,8 +39,9 @@ struct ScanView {
 
 /// The frame in which query points are given and results returned.
 enum class Frame {
-  World,  ///< the fixed world frame of the poses
-  Ego,    ///< world axes, origin at the current sensor position (the paper's F_eco,t)
+  World,   ///< the fixed world frame of the poses
+  Ego,     ///< world axes, origin at the current sensor position (the paper's F_eco,t)
+  Sensor,  ///< the sensor's own frame: origin at the sensor, axes turned with it (REP 103: x forward)
 };
 
 /// What a held point carries besides its position (ScanView's attributes): zero where
@@ -86,6 +87,15 @@ struct Stats {
   std::size_t snapshot_bytes = 0;
 };
 
+/// The region held after an update: Config::region as its lookahead grew it and its budget
+/// scaled it; zeros for the cube.
+struct RegionExtents {
+  double radius = 0.0;  ///< [m] a ball's
+  double ahead = 0.0, behind = 0.0, left = 0.0, right = 0.0, up = 0.0, down = 0.0;  ///< [m] an oriented box's
+  double scale = 1.0;   ///< the budget's scale about the sensor (1: the whole region)
+  double speed = 0.0;   ///< [m/s] the smoothed speed the lookahead follows
+};
+
 /// What the last update did.
 struct UpdateStats {
   std::size_t scan_points = 0;        ///< points in the scan given
@@ -102,6 +112,8 @@ struct UpdateStats {
   std::size_t rebuilt_subtrees = 0;   ///< subtrees dissolved and their points re-inserted
   std::size_t reinserted_points = 0;  ///< points moved by those rebuilds
   bool rebased = false;               ///< the precision origin moved this frame (see EgoOctree)
+  std::size_t over_budget = 0;        ///< held points the budget's shrinking region let go
+  RegionExtents region;               ///< the region held after this update
 };
 
 }  // namespace eco

@@ -84,6 +84,9 @@ std::vector<Field<Region>> Record<Region>::fields() {
       field("up", &Region::up, doc_of("region.up")),
       field("down", &Region::down, doc_of("region.down")),
       field("turn_with", &Region::turn_with, doc_of("region.turn_with")),
+      field("lookahead", &Region::lookahead, doc_of("region.lookahead")),
+      field("frame_period", &Region::frame_period, doc_of("region.frame_period")),
+      field("max_points", &Region::max_points, doc_of("region.max_points")),
   };
 }
 
@@ -166,7 +169,8 @@ void bind_config(py::module_& m) {
       .value("full", TurnWith::Full, "With the sensor's whole orientation: a drone, a hand-held sensor.");
   py::enum_<Frame>(m, "Frame", "The frame in which query points are given and results returned.")
       .value("World", Frame::World, "The fixed world frame of the poses. Default.")
-      .value("Ego", Frame::Ego, "World axes, origin at the current sensor position.");
+      .value("Ego", Frame::Ego, "World axes, origin at the current sensor position.")
+      .value("Sensor", Frame::Sensor, "The sensor's own frame: origin at the sensor, axes turned with it (x ahead).");
 
   bind_record<DensityCap>(
       m, "Optional cap on points per world-aligned cell (off while max_points == 0).",
@@ -188,7 +192,7 @@ void bind_config(py::module_& m) {
       m,
       "The region the map holds about the sensor inside its cube: shape cube (the default), ball "
       "(radius) or oriented_box (ahead, behind, left, right, up, down in the sensor's axes, turned by "
-      "turn_with).",
+      "turn_with); it may lead the sensor by its speed (lookahead) and keep to a budget (max_points).",
       Access::ReadWrite);
   bind_record<Config>(m,
                       "Configuration of an EgoOctree, field for field with eco::Config in C++.\n\n"

@@ -27,6 +27,25 @@ struct Record<Stats> {
 };
 
 template <>
+struct Record<RegionExtents> {
+  static constexpr const char* name = "RegionExtents";
+  static std::vector<Field<RegionExtents>> fields() {
+    using R = RegionExtents;
+    return {
+        field("radius", &R::radius, "[m] a ball's radius"),
+        field("ahead", &R::ahead, "[m] an oriented box's extent ahead of the sensor"),
+        field("behind", &R::behind, "[m] behind"),
+        field("left", &R::left, "[m] to the left"),
+        field("right", &R::right, "[m] to the right"),
+        field("up", &R::up, "[m] above"),
+        field("down", &R::down, "[m] below"),
+        field("scale", &R::scale, "the budget's scale about the sensor (1: the whole region)"),
+        field("speed", &R::speed, "[m/s] the smoothed speed the lookahead follows"),
+    };
+  }
+};
+
+template <>
 struct Record<UpdateStats> {
   static constexpr const char* name = "UpdateStats";
   static std::vector<Field<UpdateStats>> fields() {
@@ -41,7 +60,9 @@ struct Record<UpdateStats> {
         field("skipped_by_density", &U::skipped_by_density,
               "scan points refused by the density cap"),
         field("skipped_by_age", &U::skipped_by_age, "scan points already older than max_age_seconds"),
-        field("pruned", &U::pruned, "held points that left the box (R_out)"),
+        field("pruned", &U::pruned, "held points that left the box or the region (R_out)"),
+        field("region_tested", &U::region_tested,
+              "held points tested one by one for the region's surface alone"),
         field("aged_out", &U::aged_out, "held points dropped by the age limit"),
         field("cleared", &U::cleared, "held points the scan saw through (free-space clearing)"),
         field("relinked_subtrees", &U::relinked_subtrees,
@@ -50,11 +71,15 @@ struct Record<UpdateStats> {
               "subtrees dissolved and their points re-inserted"),
         field("reinserted_points", &U::reinserted_points, "points moved by those rebuilds"),
         field("rebased", &U::rebased, "the precision origin moved this frame"),
+        field("over_budget", &U::over_budget, "held points the budget's shrinking region let go"),
+        field("region", &U::region, "the region held after this update (zeros for the cube)"),
     };
   }
 };
 
 void bind_results(py::module_& m) {
+  bind_record<RegionExtents>(m, "The region held after an update: Config.region as its lookahead grew it and its "
+                                "budget scaled it.", Access::ReadOnly);
   bind_record<Stats>(m, "What an EgoOctree holds now (EgoOctree.stats()).", Access::ReadOnly);
   bind_record<UpdateStats>(m, "What an update did (returned by EgoOctree.update()).",
                            Access::ReadOnly);

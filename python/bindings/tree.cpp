@@ -342,6 +342,26 @@ such pairs. workers: as for knn(). return_ids: (sq_dists, ids) pairs instead, as
           "particular order. attributes=True: (points, attributes), attributes a dict of the kept "
           "ones' (n,) arrays, in the points' order: 'ids' uint32, 'intensities' float32, 'times' float64.")
       .def(
+          "oriented_box",
+          [](const Holder& self, const py::object& pose_value, const py::object& lo_value, const py::object& hi_value,
+             const py::object& frame_value, bool attributes) -> py::object {
+            const Eigen::Isometry3d box_pose = pose_arg(pose_value, "box_pose");
+            const Eigen::Vector3d lo = vector3_arg(lo_value, "lo");
+            const Eigen::Vector3d hi = vector3_arg(hi_value, "hi");
+            const Frame frame = enum_arg<Frame>(frame_value, "frame");
+            if (attributes) {
+              return with_attributes(config_of(self).attributes, reading(self, [&](const MapReader& t) {
+                                       return t.oriented_box_with_attributes(box_pose, lo, hi, frame);
+                                     }));
+            }
+            return rows_array(reading(self, [&](const MapReader& t) { return t.oriented_box(box_pose, lo, hi, frame); }));
+          },
+          py::arg("box_pose"), py::arg("lo"), py::arg("hi"), py::arg("frame") = Frame::World, py::kw_only(),
+          py::arg("attributes") = false,
+          "Held points inside the closed box [lo, hi] of the axes the 4x4 rigid `box_pose` places in "
+          "`frame`, returned in `frame`: a box turned any way (what lies 2 m ahead of the bumper: "
+          "box_pose = sensor_T_bumper, frame=Frame.Sensor). As box() otherwise.")
+      .def(
           "voxelize",
           [](const Holder& self, const py::object& resolution, const py::object& frame_value) {
             const double res = number_arg(resolution, "resolution");

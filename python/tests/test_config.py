@@ -51,7 +51,8 @@ def test_defaults_are_the_cpp_defaults():
         "sensor": {"vertical_fov_min": -24.9, "vertical_fov_max": 2.0, "vertical_resolution": 0.42,
                    "horizontal_resolution": 0.2, "max_range": 100.0},
         "region": {"shape": "cube", "radius": 0.0, "ahead": 0.0, "behind": 0.0, "left": 0.0, "right": 0.0,
-                   "up": 0.0, "down": 0.0, "turn_with": "yaw"},
+                   "up": 0.0, "down": 0.0, "turn_with": "yaw", "lookahead": 0.0, "frame_period": 0.1,
+                   "max_points": 0},
         "voxel_size": 0.1,
     }
 
@@ -247,7 +248,8 @@ def test_a_config_json_section_is_a_config():
                "sensor": {"vertical_fov_min": -24.9, "vertical_fov_max": 2.0, "vertical_resolution": 0.42,
                           "horizontal_resolution": 0.2, "max_range": 100.0},
                "region": {"shape": "ball", "radius": 8.0, "ahead": 0.0, "behind": 0.0, "left": 0.0, "right": 0.0,
-                          "up": 0.0, "down": 0.0, "turn_with": "yaw"},
+                          "up": 0.0, "down": 0.0, "turn_with": "yaw", "lookahead": 1.5, "frame_period": 0.1,
+                          "max_points": 50000},
                "voxel_size": 0.2}
     config = eco.Config(**json.loads(json.dumps(written)))
     assert config.to_dict() == written

@@ -135,3 +135,38 @@ def test_workers_share_a_batch_without_changing_the_answers(small_drive):
                                                       tree.radius(queries, 1.5, workers=workers)):
             np.testing.assert_array_equal(a_points, b_points)
             np.testing.assert_array_equal(a_sq, b_sq)
+
+
+def test_sensor_frame_and_oriented_boxes_match_numpy(small_drive):
+    """Frame.Sensor answers are the world's turned into the sensor's axes; an oriented box holds
+    what numpy finds by turning every held point into the box's axes."""
+    tree = eco.EgoOctree(insert_policy="AllInBox")
+    for pose, points in list(small_drive)[:4]:
+        tree.update(pose, points)
+    pose = tree.pose
+    held = tree.points()
+    in_sensor = (held - pose[:3, 3]) @ pose[:3, :3]
+    lo, hi = np.array([-6.0, -8.0, -3.0]), np.array([9.0, 7.0, 2.0])
+    inside = np.all((in_sensor >= lo - 1e-9) & (in_sensor <= hi + 1e-9), axis=1)
+    got = tree.box(lo, hi, eco.Frame.Sensor)
+    assert len(got) == inside.sum() > 0
+    np.testing.assert_allclose(sorted_rows(got), sorted_rows(in_sensor[inside]), atol=1e-9)
+    # the same box placed in the world by the sensor's pose
+    world = tree.oriented_box(pose, lo, hi)
+    np.testing.assert_allclose(sorted_rows(world), sorted_rows(held[inside]), atol=1e-9)
+    points, sq_dists = tree.knn([3.0, 0.0, 0.0], 5, eco.Frame.Sensor)
+    np.testing.assert_allclose(np.sum((points - [3.0, 0.0, 0.0]) ** 2, axis=1), sq_dists, atol=1e-9)
+    with pytest.raises(ValueError, match="box_pose"):
+        tree.oriented_box(np.diag([2.0, 1.0, 1.0, 1.0]), lo, hi)
+
+
+def test_a_budget_and_a_lookahead_show_in_the_update_stats(small_drive):
+    tree = eco.EgoOctree(region={"shape": "ball", "radius": 8.0, "lookahead": 0.5, "max_points": 3000})
+    for index, (pose, points) in enumerate(list(small_drive)[:6]):
+        stats = tree.update(pose, points)
+        assert len(tree) <= 3000
+        # 30 m/s asks 15 m more: the ball grows to the cube's half side, then the budget scales it
+        full = 8.0 if index == 0 else 10.0
+        assert stats.region.radius == pytest.approx(full * stats.region.scale)
+    assert stats.region.scale < 1.0 and stats.over_budget > 0
+    assert stats.region.speed > 0.0

@@ -33,7 +33,7 @@ class TreeMethod : public Method {
   }
   [[nodiscard]] std::vector<Eigen::Vector3d> box(const Eigen::Vector3d& lo,
                                                  const Eigen::Vector3d& hi) const override {
-    return detail::box_query(tree_, lo, hi, Frame::World);
+    return detail::box_query(tree_, Eigen::Isometry3d::Identity(), lo, hi, Frame::World);
   }
   [[nodiscard]] std::vector<VoxelKey> voxel_keys(double resolution) const override {
     return detail::voxel_keys_of(tree_, resolution);

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
+#include <stdexcept>
 
 namespace eco::detail {
 namespace {
@@ -36,6 +38,26 @@ Eigen::Vector3d precision_origin_for(const Eigen::Vector3d& position, const Eige
                                      bool first) {
   if (first || (position - anchor).cwiseAbs().maxCoeff() > kOriginReach) return nearest_origin(position);
   return anchor;
+}
+
+std::string describe_pose(const Eigen::Isometry3d& pose) {
+  std::ostringstream s;
+  s << "[" << pose.matrix().topRows<3>().format(Eigen::IOFormat(6, 0, ", ", "; ")) << "]";
+  return s.str();
+}
+
+void check_pose(const Eigen::Isometry3d& pose, const char* name) {
+  if (!pose.matrix().allFinite()) {
+    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name + " is not finite: " +
+                                describe_pose(pose));
+  }
+  const Eigen::Matrix3d r = pose.linear();
+  const double error = (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (error > 1e-6 || r.determinant() < 0.0) {
+    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name +
+                                " has a rotation that is not orthonormal (|R^T R - I| = " +
+                                std::to_string(error) + "): " + describe_pose(pose));
+  }
 }
 
 Motion next_motion(const Eigen::Isometry3d& pose, const Motion& last, double box_side, bool moves_origin,

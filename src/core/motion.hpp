@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <string>
 #include <utility>
 
 namespace eco::detail {
@@ -45,6 +46,12 @@ struct Clock {
   [[nodiscard]] double seconds(float stored) const { return origin + double(stored); }
 };
 
+/// Throws std::invalid_argument naming `name` and the value unless `pose` is finite and rigid
+/// (a rotation orthonormal to 1e-6, no reflection).
+void check_pose(const Eigen::Isometry3d& pose, const char* name);
+/// The pose's first three rows, for messages: "[r00, r01, r02, t0; ...]".
+std::string describe_pose(const Eigen::Isometry3d& pose);
+
 /// A frame's motion; the default one is the map's before its first frame (frame 0).
 struct Motion {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< world_T_sensor
@@ -57,6 +64,7 @@ struct Motion {
   std::optional<Eigen::Vector3d> origin_shift;
   Clock clock;                  ///< the map's clock after this frame's scan
   std::optional<EgoRegion> region;  ///< Config::region this frame, anchor frame; none for the cube
+  RegionSize region_size;           ///< its lookahead growth and budget scale this frame
   /// The region is not the last frame's (held points, all in that one, need testing against it):
   /// a ball spinning in place, or a box standing still, touches no point.
   bool region_moved = false;

@@ -68,6 +68,12 @@ class Tree {
   /// Enters a new frame: its motion, the density grid from its anchor, its age limit, and the
   /// held times re-expressed in place when the clock's origin moved.
   void set_motion(const Motion& m);
+  /// The region the frame ends with, once the budget narrowed it (Config::region.max_points).
+  void narrow_region(const EgoRegion& region, const RegionSize& size) {
+    motion_.region = region;
+    motion_.region_size = size;
+    motion_.region_moved = true;
+  }
   /// Counts the density cells of `held` anew (after the precision origin moved, their keys did).
   void recount_density(const std::vector<StoredPoint>& held);
   /// Gives back what a map that shrank holds in free blocks (a bounded share an update), then the

@@ -50,6 +50,9 @@ void put_config(ByteWriter& out, const Config& c) {
     out.put(v);
   }
   out.put(std::uint8_t(c.region.turn_with));
+  out.put(c.region.lookahead);  // version 3
+  out.put(c.region.frame_period);
+  out.put(c.region.max_points);
 }
 
 /// A byte that must be 0 or 1 (a flag, or one of two enumerators).
@@ -85,7 +88,7 @@ Config get_config(ByteReader& in, std::uint32_t version) {
   c.sensor.horizontal_resolution = in.get<double>("sensor.horizontal_resolution");
   c.sensor.max_range = in.get<double>("sensor.max_range");
   c.voxel_size = in.get<double>("voxel_size");
-  if (version == kMapFileVersionWithRegion) {
+  if (version >= kMapFileVersionWithRegion) {
     const std::size_t at = in.offset();
     const auto shape = in.get<std::uint8_t>("region.shape");
     if (shape < 1 || shape > 2) ByteReader::fail_at(at, "region.shape = " + std::to_string(shape) + " is neither ball nor oriented_box");
@@ -95,6 +98,11 @@ Config get_config(ByteReader& in, std::uint32_t version) {
       *v = in.get<double>("region's extents");
     }
     c.region.turn_with = get_flag(in, "region.turn_with") ? TurnWith::Full : TurnWith::Yaw;
+  }
+  if (version >= kMapFileVersionSizedRegion) {
+    c.region.lookahead = in.get<double>("region.lookahead");
+    c.region.frame_period = in.get<double>("region.frame_period");
+    c.region.max_points = in.get<std::uint32_t>("region.max_points");
   }
   try {
     c.validate();
@@ -137,9 +145,32 @@ void put_motion(ByteWriter& out, const Motion& m) {
   for (int a = 0; a < 3; ++a) out.put(m.anchor[a]);
   out.put(m.clock.latest);
   out.put(m.clock.origin);
+  if (!m.region) return;  // version 3: the region's size
+  out.put(m.region_size.speed);
+  out.put(m.region_size.growth);
+  out.put(m.region_size.scale);
+  out.put(m.region_size.time);
 }
 
-Motion get_motion(ByteReader& in, const Config& config) {
+/// The region's size a version-3 file ends its motion with: what the lookahead and the budget
+/// could have made of `region` in a cube of half side `half_side`.
+RegionSize get_region_size(ByteReader& in, const Region& region, double half_side) {
+  const std::size_t at = in.offset();
+  RegionSize size;
+  size.speed = in.get<double>("region's speed");
+  size.growth = in.get<double>("region's growth");
+  size.scale = in.get<double>("region's scale");
+  size.time = in.get<double>("region's time");
+  const bool steps = std::round(size.scale * 100.0) / 100.0 == size.scale;
+  if (!(std::isfinite(size.speed) && size.speed >= 0.0 && size.growth >= 0.0 &&
+        size.growth <= region.max_growth(half_side) && size.scale >= 0.0 && size.scale <= 1.0 && steps &&
+        !std::isinf(size.time))) {
+    ByteReader::fail_at(at, "region's size: a speed, growth or scale the region cannot take");
+  }
+  return size;
+}
+
+Motion get_motion(ByteReader& in, const Config& config, std::uint32_t version) {
   Motion m;
   m.frame = in.get<std::uint32_t>("frame");
   if (m.frame == 0) return m;
@@ -161,7 +192,8 @@ Motion get_motion(ByteReader& in, const Config& config) {
     ByteReader::fail_at(clock_at, "clock: its latest time and origin do not fit together");
   }
   m.box = ego_box(m.pose.translation(), m.anchor, config.box_side);
-  m.region = EgoRegion::at(config.region, m.pose, m.anchor);
+  if (version >= kMapFileVersionSizedRegion) m.region_size = get_region_size(in, config.region, config.box_side / 2);
+  m.region = EgoRegion::at(config.region, m.region_size, m.pose, m.anchor);
   return m;
 }
 
@@ -285,7 +317,7 @@ std::string encode_map(const Tree& tree, const ClearingState* clearing) {
   // room for it all at once: the points are most of it, and growing would copy them
   out.bytes().reserve(1024 + 5 * parts.nodes.size() + 4 * columns * parts.points.x.size() + image);
   out.put_bytes(kMagic);
-  out.put(tree.config().region.shape == RegionShape::Cube ? kMapFileVersion : kMapFileVersionWithRegion);
+  out.put(tree.config().region.shape == RegionShape::Cube ? kMapFileVersion : kMapFileVersionSizedRegion);
   out.put(std::uint64_t(0));  // the payload's length, once known
   put_config(out, tree.config());
   put_motion(out, tree.motion());
@@ -305,9 +337,9 @@ DecodedMap decode_map(std::string_view bytes) {
     if (header.get<char>("magic") != expected) ByteReader::fail_at(0, "not a map file (wrong magic)");
   }
   const auto version = header.get<std::uint32_t>("version");
-  if (version != kMapFileVersion && version != kMapFileVersionWithRegion) {
+  if (version < kMapFileVersion || version > kMapFileVersionSizedRegion) {
     ByteReader::fail_at(8, "version " + std::to_string(version) + "; this library reads versions " +
-                               std::to_string(kMapFileVersion) + " and " + std::to_string(kMapFileVersionWithRegion));
+                               std::to_string(kMapFileVersion) + " to " + std::to_string(kMapFileVersionSizedRegion));
   }
   const auto payload = header.get<std::uint64_t>("payload length");
   if (bytes.size() < kHeaderBytes + kChecksumBytes) {
@@ -325,7 +357,7 @@ DecodedMap decode_map(std::string_view bytes) {
 
   ByteReader in(bytes.substr(0, end), kHeaderBytes);
   const Config config = get_config(in, version);
-  const Motion motion = get_motion(in, config);
+  const Motion motion = get_motion(in, config, version);
   DecodedMap map;
   map.tree = get_tree(in, config, motion);
   if (config.clearing.enabled) map.clearing = get_clearing(in, *map.tree);

@@ -15,6 +15,8 @@ namespace eco::detail {
 /// fields after the configuration's) for a map that holds another region.
 inline constexpr std::uint32_t kMapFileVersion = 1;
 inline constexpr std::uint32_t kMapFileVersionWithRegion = 2;
+/// A region with its lookahead, budget and the size they gave it (written for every region since).
+inline constexpr std::uint32_t kMapFileVersionSizedRegion = 3;
 
 /// The file's bytes for `tree` and, while clearing is on, its `clearing` state.
 std::string encode_map(const Tree& tree, const ClearingState* clearing);

@@ -15,7 +15,21 @@ namespace eco::detail {
 
 /// The world position of `q` given in `frame`.
 inline Eigen::Vector3d world_of(const Tree& t, const Eigen::Vector3d& q, Frame frame) {
-  return frame == Frame::Ego ? Eigen::Vector3d(q + t.motion().pose.translation()) : q;
+  const Eigen::Isometry3d& pose = t.motion().pose;
+  switch (frame) {
+    case Frame::World: return q;
+    case Frame::Ego: return q + pose.translation();
+    case Frame::Sensor: return pose * q;
+  }
+  return q;
+}
+
+/// The pose of `frame` in the world: where the sensor is (its axes for Sensor, the world's for Ego).
+inline Eigen::Isometry3d world_T_frame(const Tree& t, Frame frame) {
+  Eigen::Isometry3d pose = t.motion().pose;
+  if (frame == Frame::World) return Eigen::Isometry3d::Identity();
+  if (frame == Frame::Ego) pose.linear().setIdentity();
+  return pose;
 }
 
 /// `q` (given in `frame`) in the anchor frame, where stored points live.
@@ -27,8 +41,11 @@ inline std::array<double, 3> to_anchor_frame(const Tree& t, const Eigen::Vector3
 
 /// A stored point expressed in `frame`.
 inline Eigen::Vector3d from_stored(const Tree& t, const std::array<float, 3>& p, Frame frame) {
-  const Eigen::Vector3d w = t.motion().to_world(p);
-  return frame == Frame::Ego ? Eigen::Vector3d(w - t.motion().pose.translation()) : w;
+  const Motion& m = t.motion();
+  const Eigen::Vector3d w = m.to_world(p);
+  if (frame == Frame::World) return w;
+  const Eigen::Vector3d d = w - m.pose.translation();
+  return frame == Frame::Ego ? d : Eigen::Vector3d(m.pose.linear().transpose() * d);
 }
 
 /// The attributes of stored point `s` as the caller gave them (zero where not kept).

@@ -20,12 +20,13 @@ std::size_t knn_ids_query(const Tree& t, const Eigen::Vector3d& query, std::span
                           std::span<double> sq_dists, Frame frame);
 /// Held points within `radius` of `query`, nearest first.
 std::vector<Neighbor> radius_query(const Tree& t, const Eigen::Vector3d& query, double radius, Frame frame);
-/// Held points in the closed box [lo, hi], in no particular order.
-std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                                       Frame frame);
+/// Held points in the closed box [lo, hi] of the axes `box_pose` places in `frame`, in no
+/// particular order.
+std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Isometry3d& box_pose, const Eigen::Vector3d& lo,
+                                       const Eigen::Vector3d& hi, Frame frame);
 /// The same with their attributes.
-std::vector<HeldPoint> box_held_query(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                                      Frame frame);
+std::vector<HeldPoint> box_held_query(const Tree& t, const Eigen::Isometry3d& box_pose, const Eigen::Vector3d& lo,
+                                      const Eigen::Vector3d& hi, Frame frame);
 /// Unique keys of the occupied voxels of side `resolution`, in no particular order.
 std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution);
 /// Sorts keys[from, end) and drops the repeats there.

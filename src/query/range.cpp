@@ -32,22 +32,36 @@ std::vector<Neighbor> radius_query(const Tree& t, const Eigen::Vector3d& query, 
 
 namespace {
 
-/// Calls visit(stored point) for each held point in the closed box [lo, hi] given in `frame`.
+/// Calls visit(stored point) for each held point in the closed box [lo, hi] of the axes
+/// `box_pose` places in `frame`: by the world-axis walls when those axes are the world's, else by
+/// the turned box (EgoRegion's tests: subtrees wholly inside taken whole, wholly outside skipped).
 template <class Visit>
-void visit_box(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, Frame frame, Visit&& visit) {
+void visit_box(const Tree& t, const Eigen::Isometry3d& box_pose, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+               Frame frame, Visit&& visit) {
   require_finite(lo, "box", "lo");
   require_finite(hi, "box", "hi");
+  check_pose(box_pose, "box_pose");
   if ((lo.array() > hi.array()).any()) {
     std::ostringstream s;
     s << "eco::EgoOctree::box: lo = [" << lo.transpose() << "] exceeds hi = [" << hi.transpose()
       << "] on some axis";
     throw std::invalid_argument(s.str());
   }
+  if (t.root() == kNone) return;
+  const Eigen::Isometry3d world_T_box = world_T_frame(t, frame) * box_pose;
+  if (world_T_box.linear() != Eigen::Matrix3d::Identity()) {
+    const EgoRegion b = EgoRegion::oriented_box(world_T_box, lo, hi, t.motion().anchor);
+    walk_leaves(
+        t, t.root(), [&](const Aabb& bounds) { return b.misses(bounds) ? 0 : b.contains_all(bounds) ? 2 : 1; },
+        [&](const StoredPoint& s, bool whole) {
+          if (whole || b.contains(s.p)) visit(s);
+        });
+    return;
+  }
   Box b;
   b.half_open = false;
-  b.lo = to_anchor_frame(t, lo, frame);
-  b.hi = to_anchor_frame(t, hi, frame);
-  if (t.root() == kNone) return;
+  b.lo = to_anchor_frame(t, box_pose * lo, frame);
+  b.hi = to_anchor_frame(t, box_pose * hi, frame);
   walk_leaves(
       t, t.root(), [&](const Aabb& bounds) { return b.misses(bounds) ? 0 : b.contains_all(bounds) ? 2 : 1; },
       [&](const StoredPoint& s, bool whole) {
@@ -57,17 +71,17 @@ void visit_box(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& 
 
 }  // namespace
 
-std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                                       Frame frame) {
+std::vector<Eigen::Vector3d> box_query(const Tree& t, const Eigen::Isometry3d& box_pose, const Eigen::Vector3d& lo,
+                                       const Eigen::Vector3d& hi, Frame frame) {
   std::vector<Eigen::Vector3d> out;
-  visit_box(t, lo, hi, frame, [&](const StoredPoint& s) { out.push_back(from_stored(t, s.p, frame)); });
+  visit_box(t, box_pose, lo, hi, frame, [&](const StoredPoint& s) { out.push_back(from_stored(t, s.p, frame)); });
   return out;
 }
 
-std::vector<HeldPoint> box_held_query(const Tree& t, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                                      Frame frame) {
+std::vector<HeldPoint> box_held_query(const Tree& t, const Eigen::Isometry3d& box_pose, const Eigen::Vector3d& lo,
+                                      const Eigen::Vector3d& hi, Frame frame) {
   std::vector<HeldPoint> out;
-  visit_box(t, lo, hi, frame,
+  visit_box(t, box_pose, lo, hi, frame,
             [&](const StoredPoint& s) { out.push_back({from_stored(t, s.p, frame), attributes_of(t, s)}); });
   return out;
 }

@@ -29,9 +29,22 @@ std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion, UpdateStats& s
   return held;
 }
 
-/// Config::region at `motion`'s pose, and whether it moved since the `last` frame's.
-void place_region(Motion& motion, const Region& region, const Motion& last) {
-  motion.region = EgoRegion::at(region, motion.pose, motion.anchor);
+/// The latest finite time of `scan`'s points, kept or not; NaN when it has none.
+double scan_time(ScanView scan) {
+  double latest = std::numeric_limits<double>::quiet_NaN();
+  if (scan.times == nullptr) return latest;
+  for (std::size_t i = 0; i < scan.count; ++i) {
+    if (std::isfinite(scan.times[i]) && !(scan.times[i] <= latest)) latest = scan.times[i];
+  }
+  return latest;
+}
+
+/// Config::region at `motion`'s pose, sized for its speed (the budget narrows it after the scan
+/// is in), and whether it moved since the `last` frame's.
+void place_region(Motion& motion, const Config& config, const Motion& last, ScanView scan) {
+  motion.region_size = next_region_size(config.region, last.region_size, motion.moved, scan_time(scan),
+                                        config.box_side / 2);
+  motion.region = EgoRegion::at(config.region, motion.region_size, motion.pose, motion.anchor);
   motion.region_moved = motion.region && !(last.region && *last.region == *motion.region);
 }
 
@@ -50,7 +63,7 @@ EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor
   EgoMotion out{next_motion(world_T_sensor, tree.motion(), tree.config().box_side, true,
                              latest_time(scan, tree.config())),
                  {}};
-  place_region(out.motion, tree.config().region, tree.motion());
+  place_region(out.motion, tree.config(), tree.motion(), scan);
   tree.set_motion(out.motion);  // the density keys of the re-expressed points need the new origin
   if (out.motion.origin_shift) out.displaced = rebase(tree, out.motion, stats);
   return out;
@@ -59,7 +72,7 @@ EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor
 Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
   Motion motion = next_motion(world_T_sensor, tree.motion(), tree.config().box_side, /*moves_origin=*/false,
                               latest_time(scan, tree.config()));
-  place_region(motion, tree.config().region, tree.motion());
+  place_region(motion, tree.config(), tree.motion(), scan);
   tree.set_motion(motion);
   return tree.motion();
 }

@@ -45,7 +45,7 @@ void prune_shift_out(Tree& tree, const Motion& motion, UpdateStats& stats) {
 }
 
 bool leaves(const Tree& tree, const StoredPoint& s, const Motion& motion, UpdateStats& stats) {
-  const bool inside = motion.box.contains(s.p[0], s.p[1], s.p[2]) && (!motion.region || motion.region->contains(s.p));
+  const bool inside = motion.box.contains(s.p[0], s.p[1], s.p[2]) && (!motion.region_moved || motion.region->contains(s.p));
   if (inside && tree.age_limit().admits(s)) return false;
   ++(inside ? stats.aged_out : stats.pruned);
   return true;

@@ -64,17 +64,22 @@ void place_start_table(Tree& tree, const Motion& motion);
 void reinsert(Tree& tree, std::vector<StoredPoint>& points, UpdateStats& stats);
 void insert_scan(Tree& tree, const Motion& motion, ScanView scan, ClearingState* clearing, UpdateStats& stats);
 
+/// 5. The budget (Config::region.max_points): when the tree holds more, the region shrinks about
+///    the sensor to the largest scale in steps of 1 % at which the held points fit (none: it
+///    holds nothing), the points outside leave (counted as over_budget), and the tree's motion
+///    ends the frame with the narrowed region.
+void keep_to_budget(Tree& tree, UpdateStats& stats);
+
 /// One update (EgoOctree::update): begin_update(), then the four stages (with free-space
-/// clearing's, reading and writing `clearing`, when it is given), then 5., the memory a map that
-/// shrank holds free given back (Tree::give_back_memory). Returns the frame's statistics.
+/// clearing's, reading and writing `clearing`, when it is given), the budget, then 6., the
+/// memory a map that shrank holds free given back (Tree::give_back_memory). Returns the frame's
+/// statistics, with the region the frame ends with.
 UpdateStats run_update(Tree& tree, ClearingState* clearing, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
 /// Every update's preamble (ECO's and the baselines'): checks the arguments against the
 /// configuration — throwing std::invalid_argument, the tree unchanged, when they are refused —
 /// and returns the frame's statistics, counting the scan.
 UpdateStats begin_update(const Config& config, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
 
-/// Throws std::invalid_argument naming `name` and the value unless `pose` is finite and rigid.
-void check_pose(const Eigen::Isometry3d& pose, const char* name);
 /// Throws std::invalid_argument naming the value unless `pose` is finite and rigid, `scan` is
 /// readable and the density cap's grid can index the points around `pose` (Config's). `name`
 /// names the pose argument in the message.

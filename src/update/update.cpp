@@ -11,12 +11,6 @@
 namespace eco {
 namespace {
 
-std::string describe(const Eigen::Isometry3d& pose) {
-  std::ostringstream s;
-  s << "[" << pose.matrix().topRows<3>().format(Eigen::IOFormat(6, 0, ", ", "; ")) << "]";
-  return s.str();
-}
-
 /// How many quanta from the world origin a pose may lie in Quantised mode: the root cell's
 /// integer lattice indices (a quantum is 2^(depth - k) of them, at most 2^23) stay far from
 /// overflowing within it (7.9e11 m at the default quantum).
@@ -72,21 +66,13 @@ void check_density_grid(const Eigen::Isometry3d& pose, const Config& config) {
   }
 }
 
-}  // namespace
-
-void detail::check_pose(const Eigen::Isometry3d& pose, const char* name) {
-  if (!pose.matrix().allFinite()) {
-    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name + " is not finite: " +
-                                describe(pose));
-  }
-  const Eigen::Matrix3d r = pose.linear();
-  const double error = (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  if (error > 1e-6 || r.determinant() < 0.0) {
-    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name +
-                                " has a rotation that is not orthonormal (|R^T R - I| = " +
-                                std::to_string(error) + "): " + describe(pose));
-  }
+RegionExtents extents_of(const Region& configured, const detail::RegionSize& size) {
+  if (configured.shape == RegionShape::Cube) return {};
+  const Region r = configured.sized(size.growth, size.scale);
+  return {r.radius, r.ahead, r.behind, r.left, r.right, r.up, r.down, size.scale, size.speed};
 }
+
+}  // namespace
 
 void detail::check_update_arguments(const Eigen::Isometry3d& pose, const char* name,
                                     const ScanView& scan, const Config& config) {
@@ -96,7 +82,7 @@ void detail::check_update_arguments(const Eigen::Isometry3d& pose, const char* n
   const double least_quantum = config.box_side / double((1u << config.quantum_levels) - 1u);
   if (config.recentring == Recentring::Quantised && !(reach < kMaxQuanta * least_quantum) &&
       !(reach < kMaxQuanta * config.quantum())) {
-    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name + " = " + describe(pose) +
+    throw std::invalid_argument(std::string("eco::EgoOctree: ") + name + " = " + describe_pose(pose) +
                                 " lies farther than 2^38 quanta (q = " + std::to_string(config.quantum()) +
                                 " m) from the world origin");
   }
@@ -120,7 +106,9 @@ UpdateStats detail::run_update(Tree& tree, ClearingState* clearing, const Eigen:
   if (clearing) clear_free_space(tree, *clearing, motion, scan, displaced, stats);  //    seen through
   displaced = refine_overlap(tree, motion, std::move(displaced), stats);            // 3. R_over
   insert_shift_in(tree, motion, scan, std::move(displaced), clearing, stats);       // 4. R_in
-  tree.give_back_memory();                                                          // 5. memory
+  keep_to_budget(tree, stats);                                                      // 5. budget
+  tree.give_back_memory();                                                          // 6. memory
+  stats.region = extents_of(tree.config().region, tree.motion().region_size);
   return stats;
 }
 

@@ -90,7 +90,7 @@ TEST(ConfigFields, TheTableNamesEveryFieldOnceWithDocsRangesAndValidDefaults) {
     f.parse(c, f.default_text());
     EXPECT_EQ(f.get(c), f.get(Config{})) << f.name;
   }
-  EXPECT_EQ(names.size(), 31u);
+  EXPECT_EQ(names.size(), 34u);
   EXPECT_THROW((void)config_field("box_sid"), std::invalid_argument);
 }
 
@@ -103,6 +103,7 @@ TEST(ConfigFields, EverySurfaceTakesTheSameGoodValue) {
     if (f.name == "density_cap.max_points") base.density_cap.cell_size = 0.5;
     if (f.name == "max_age_seconds") base.attributes.time = true;
     if (f.name == "region.shape") base.region = {RegionShape::Cube, 5.0, 5.0, 1.0, 1.0, 1.0, 1.0, 1.0};  // sizes for either shape
+    if (f.name == "region.lookahead" || f.name == "region.max_points") base.region = {RegionShape::Ball, 5.0};
     Config by_table = base;
     f.parse(by_table, value);
     EXPECT_NO_THROW(by_table.validate());

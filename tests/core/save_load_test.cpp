@@ -165,8 +165,8 @@ TEST(LoadRefuses, WrongMagicOrVersionByName) {
   bad[0] = 'X';
   expect_refused(dir, bad, {"byte 0", "wrong magic"}, "magic");
   bad = good;
-  bad[8] = 3;  // version 3
-  expect_refused(dir, bad, {"byte 8", "version 3", "reads versions 1 and 2"}, "version");
+  bad[8] = 4;  // version 4
+  expect_refused(dir, bad, {"byte 8", "version 4", "reads versions 1 to 3"}, "version");
   expect_refused(dir, "", {"byte 0", "the file ends here"}, "an empty file");
 }
 

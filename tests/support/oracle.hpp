@@ -77,6 +77,7 @@ class Oracle {
     const bool had_box = frame_ > 1;
     const Eigen::Vector3d previous = position_;
     position_ = pose.translation();
+    size_region(had_box ? (position_ - previous).norm() : 0.0, attributes.times);
     const std::uint32_t age = cfg_.max_age_frames;
     const std::uint32_t cutoff = age > 0 && frame_ > age ? frame_ - age : 0;
     if (memory_ == Memory::TheBox) {
@@ -112,7 +113,12 @@ class Oracle {
       held_.push_back({f, age > 0 ? frame_ : 0, cfg_.attributes.ids ? attributes.ids[i] : 0u,
                        cfg_.attributes.intensity ? attributes.intensities[i] : 0.0f, time, frame_});
     }
+    keep_to_budget(pose);
   }
+
+  /// The region's growth [m] and budget scale after the last update (Config::region).
+  [[nodiscard]] double region_growth() const { return growth_; }
+  [[nodiscard]] double region_scale() const { return scale_; }
 
   /// Held points in world coordinates, sorted.
   [[nodiscard]] std::vector<Eigen::Vector3d> points() const {
@@ -169,6 +175,21 @@ class Oracle {
         in = in && v >= lo[a] - origin_[a] && v <= hi[a] - origin_[a];
       }
       if (in) out.push_back(world(h.p));
+    }
+    sort_points(out);
+    return out;
+  }
+
+  /// Held points in the closed box [lo, hi] of the axes `world_T_box`: d = f - the box's origin
+  /// (both from the precision origin), turned into the box's axes, against lo and hi.
+  [[nodiscard]] std::vector<Eigen::Vector3d> oriented_box(const Eigen::Isometry3d& world_T_box, const Eigen::Vector3d& lo,
+                                                          const Eigen::Vector3d& hi) const {
+    const Eigen::Matrix3d to_local = world_T_box.linear().transpose();
+    const Eigen::Vector3d centre = world_T_box.translation() - origin_;
+    std::vector<Eigen::Vector3d> out;
+    for (const Held& h : held_) {
+      const Eigen::Vector3d l = to_local * (Eigen::Vector3d(double(h.p[0]), double(h.p[1]), double(h.p[2])) - centre);
+      if ((l.array() >= lo.array()).all() && (l.array() <= hi.array()).all()) out.push_back(world(h.p));
     }
     sort_points(out);
     return out;
@@ -283,9 +304,46 @@ class Oracle {
 
   /// Config::region at `pose`, as the contract words it: d = f - the sensor (both from the
   /// precision origin), turned into the region's axes, against the extents (closed).
-  [[nodiscard]] bool in_region(const Eigen::Isometry3d& pose, const std::array<float, 3>& f) const {
+  /// The lookahead (Config::region): the speed from the distance `moved` over the time between
+  /// the scans' latest points (or frame_period), smoothed by 0.3 a frame; the growth set to 1.25x
+  /// speed x lookahead when that exceeds it or falls under 1/1.25^2 of it, at most what the cube
+  /// holds. Each frame starts from the whole region (scale 1).
+  void size_region(double moved, const std::vector<double>& times) {
+    scale_ = 1.0;
+    double time = std::numeric_limits<double>::quiet_NaN();
+    for (const double t : times) {
+      if (std::isfinite(t) && (std::isnan(time) || t > time)) time = t;
+    }
+    const double last_time = last_scan_time_;
+    last_scan_time_ = time;
     const Region& r = cfg_.region;
-    if (r.shape == RegionShape::Cube) return true;
+    if (r.lookahead == 0.0) return;
+    const bool timed = std::isfinite(time) && std::isfinite(last_time) && time > last_time;
+    speed_ += 0.3 * (moved / (timed ? time - last_time : r.frame_period) - speed_);
+    const double asked = speed_ * r.lookahead;
+    if (asked > growth_ || asked * 1.25 * 1.25 < growth_) growth_ = std::min(asked * 1.25, r.max_growth(cfg_.box_side / 2));
+  }
+
+  /// The budget (Config::region.max_points): while more are held, the largest scale k / 100 at
+  /// which the region holds at most the budget, tried from the whole region down; none: nothing.
+  void keep_to_budget(const Eigen::Isometry3d& pose) {
+    const std::uint32_t budget = cfg_.region.max_points;
+    if (budget == 0 || held_.size() <= budget) return;
+    int k = 100;
+    for (; k > 0; --k) {
+      scale_ = k / 100.0;
+      const auto inside = std::count_if(held_.begin(), held_.end(), [&](const Held& h) { return in_region(pose, h.p); });
+      if (std::size_t(inside) <= budget) break;
+    }
+    scale_ = k / 100.0;
+    std::erase_if(held_, [&](const Held& h) { return k == 0 || !in_region(pose, h.p); });
+  }
+
+  [[nodiscard]] bool in_region(const Eigen::Isometry3d& pose, const std::array<float, 3>& f) const {
+    if (cfg_.region.shape == RegionShape::Cube) return true;
+    Region r = cfg_.region;  // grown ahead (a ball: all round), then scaled about the sensor
+    (r.shape == RegionShape::Ball ? r.radius : r.ahead) += growth_;
+    for (double* e : {&r.radius, &r.ahead, &r.behind, &r.left, &r.right, &r.up, &r.down}) *e *= scale_;
     const Eigen::Vector3d d = Eigen::Vector3d(double(f[0]), double(f[1]), double(f[2])) - (pose.translation() - origin_);
     if (r.shape == RegionShape::Ball) return d.squaredNorm() <= r.radius * r.radius;
     Eigen::Matrix3d turn = pose.linear();
@@ -351,6 +409,8 @@ class Oracle {
   std::uint32_t frame_ = 0;
   std::vector<SeenScan> scans_;  // the last two updates' (clearing.arrivals), oldest first
   double latest_ = -std::numeric_limits<double>::infinity();  // the latest time taken in
+  double speed_ = 0.0, growth_ = 0.0, scale_ = 1.0;  // Config::region's lookahead and budget
+  double last_scan_time_ = std::numeric_limits<double>::quiet_NaN();
   double time_origin_ = 0.0;
 };
 
