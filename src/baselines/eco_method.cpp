@@ -1,4 +1,5 @@
-// `eco`, `eco_exact` and `eco_clearing`: the EgoOctree itself, through its public API.
+// `eco`, `eco_exact`, `eco_clearing`, `eco_ball` and `eco_box`: the EgoOctree itself, through its
+// public API.
 
 #include "baselines/makers.hpp"
 
@@ -51,6 +52,21 @@ std::unique_ptr<Method> make_eco(const Config& config, Recentring recentring) {
   Config c = config;
   c.recentring = recentring;
   return std::make_unique<EcoMethod>(recentring == Recentring::Quantised ? "eco" : "eco_exact", c);
+}
+
+std::unique_ptr<Method> make_eco_ball(const Config& config) {
+  Config c = config;
+  if (c.region.shape != RegionShape::Ball) c.region = {RegionShape::Ball, c.box_side / 2};  // the most the cube holds
+  return std::make_unique<EcoMethod>("eco_ball", c);
+}
+
+std::unique_ptr<Method> make_eco_box(const Config& config) {
+  Config c = config;
+  if (c.region.shape != RegionShape::OrientedBox) {  // a car's, mostly ahead: its corners stay within box_side / 2 as it turns
+    const double l = c.box_side;
+    c.region = {RegionShape::OrientedBox, 0.0, 0.39 * l, 0.2 * l, 0.3 * l, 0.3 * l, 0.25 * l, 0.25 * l};
+  }
+  return std::make_unique<EcoMethod>("eco_box", c);
 }
 
 std::unique_ptr<Method> make_eco_clearing(const Config& config) {

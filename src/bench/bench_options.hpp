@@ -3,6 +3,7 @@
 // what it measures, and the tree configuration every method gets.
 
 #include <eco/config.hpp>
+#include <eco/sim/simulator.hpp>
 #include <eco/workloads/scan_source.hpp>
 
 #include <cstdint>
@@ -31,6 +32,7 @@ struct BenchOptions {
   std::size_t knn_k = 5;
   std::uint64_t seed = 1;              ///< query draws; the simulator's seed when there is no data
   std::size_t sim_frames = 200;        ///< length of the default simulated drive
+  sim::SimConfig sim;                  ///< its vehicle's manoeuvre and speed (seed and frames: the two above)
   bool check_every_frame = false;      ///< also run check_invariants() after every update (slow)
   bool time_snapshots = false;         ///< then time publishing snapshots (bench/snapshot_timing.hpp)
 

@@ -46,6 +46,13 @@ std::string now_utc() {
   return buffer;
 }
 
+std::string manoeuvre_name(sim::Manoeuvre m) {
+  for (const auto& [name, value] : sim::manoeuvre_names()) {
+    if (value == m) return name;
+  }
+  return "route";
+}
+
 }  // namespace
 
 json bench_options_json(const BenchOptions& o) {
@@ -58,6 +65,10 @@ json bench_options_json(const BenchOptions& o) {
               {"k", o.knn_k},
               {"seed", o.seed},
               {"sim-frames", o.sim_frames},
+              {"sim-manoeuvre", manoeuvre_name(o.sim.manoeuvre)},
+              {"sim-speed", o.sim.speed},
+              {"sim-spin-rate", o.sim.spin_rate_deg},
+              {"sim-roundabout-radius", o.sim.roundabout_radius},
               {"check", o.check_every_frame}};
   if (o.data) out["data"] = std::filesystem::weakly_canonical(*o.data).string();  // --config works from anywhere
   out.update(source_options_json(o.source));
@@ -98,13 +109,14 @@ json run_json(const BenchRun& run, const std::string& command_line) {
 std::string csv(const MethodRun& m) {
   std::ostringstream s;
   s << "frame,input_points,update_ms,update_faults,caller_ms,caller_faults,voxel_ms,knn_ms,points,nodes,mean_depth,"
-       "max_depth,bytes,chamfer_m\n";
+       "max_depth,bytes,chamfer_m,region_tested,region_scale,over_budget\n";
   s << std::setprecision(6);
   for (const FrameRecord& r : m.frames) {
     s << r.frame << ',' << r.input_points << ',' << r.update_ms << ',' << r.update_faults << ',' << r.caller_ms << ','
       << r.caller_faults << ',' << r.voxel_ms << ',' << r.knn_ms << ','
       << r.points << ',' << r.nodes << ',' << r.mean_depth << ',' << r.max_depth << ',' << r.bytes << ','
-      << (std::isnan(r.chamfer_m) ? std::string() : fixed(r.chamfer_m, 6)) << '\n';
+      << (std::isnan(r.chamfer_m) ? std::string() : fixed(r.chamfer_m, 6)) << ',' << r.region_tested << ','
+      << r.region_scale << ',' << int(r.over_budget) << '\n';
   }
   return s.str();
 }
@@ -129,7 +141,10 @@ json summary_json(const BenchRun& run, const std::vector<MethodSummary>& summari
                        {"bytes_per_point", s.bytes_per_point},
                        {"points", s.points},
                        {"nodes", s.nodes},
-                       {"chamfer_m", number(s.chamfer_m)}};
+                       {"chamfer_m", number(s.chamfer_m)},
+                       {"region_tested", s.region_tested},
+                       {"region_scale_min", s.region_scale_min},
+                       {"frames_over_budget", s.frames_over_budget}};
   }
   for (const MethodRun& m : run.methods) {
     if (!m.map_file) continue;

@@ -87,6 +87,13 @@ BenchRun run_bench(const BenchOptions& given, const Progress& progress) {
         maps[m] = method.voxel_keys(options.voxel_resolution);
         r.voxel_ms = r.knn_ms = std::numeric_limits<double>::quiet_NaN();
       }
+      if (const EgoOctree* tree = method.ego_octree()) {
+        const UpdateStats& u = tree->last_update();
+        r.region_tested = u.region_tested;
+        r.region_scale = u.region.scale;
+        const std::uint32_t budget = tree->config().region.max_points;
+        r.over_budget = budget > 0 && tree->size() > budget;
+      }
       const Stats s = method.stats();
       r.points = s.points;
       r.nodes = s.nodes;

@@ -28,6 +28,10 @@ struct FrameRecord {
   int max_depth = 0;
   std::size_t bytes = 0;
   double chamfer_m = 0.0;        ///< voxel map vs the reference's (BenchRun), clipped to the box; NaN without it
+  // ECO's region (Config::region), zero for the others:
+  std::size_t region_tested = 0;  ///< held points tested one by one for the region's surface alone
+  double region_scale = 1.0;      ///< the budget's scale after the update
+  bool over_budget = false;       ///< more held than region.max_points after the update
 };
 
 struct MethodRun {

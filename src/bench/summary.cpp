@@ -23,6 +23,7 @@ MethodSummary summarize(const MethodRun& run) {
     s.caller_faults += double(r.caller_faults);
     s.voxel_ms += r.voxel_ms;
     s.knn_ms += r.knn_ms;
+    s.region_tested += double(r.region_tested);
   }
   for (const FrameRecord& r : run.frames) {
     s.points += double(r.points);
@@ -31,6 +32,8 @@ MethodSummary summarize(const MethodRun& run) {
     s.max_depth = std::max(s.max_depth, r.max_depth);
     s.bytes = std::max(s.bytes, r.bytes);
     s.chamfer_m += r.chamfer_m;
+    s.region_scale_min = std::min(s.region_scale_min, r.region_scale);
+    s.frames_over_budget += r.over_budget ? 1 : 0;
     if (r.points > 0) {
       s.bytes_per_point += double(r.bytes) / double(r.points);
       ++holding;
@@ -39,7 +42,9 @@ MethodSummary summarize(const MethodRun& run) {
   const double n = double(run.frames.size());
   for (double* v : {&s.points, &s.nodes, &s.mean_depth, &s.chamfer_m}) *v /= n;
   const double timed = double(updates.size());
-  for (double* v : {&s.update_ms, &s.update_faults, &s.caller_ms, &s.caller_faults, &s.voxel_ms, &s.knn_ms}) *v /= timed;
+  for (double* v : {&s.update_ms, &s.update_faults, &s.caller_ms, &s.caller_faults, &s.voxel_ms, &s.knn_ms, &s.region_tested}) {
+    *v /= timed;
+  }
   s.bytes_per_point = holding > 0 ? s.bytes_per_point / double(holding) : 0.0;
   std::sort(updates.begin(), updates.end());
   const auto rank = std::size_t(std::ceil(0.99 * timed));  // nearest-rank percentile

@@ -31,6 +31,9 @@ struct MethodSummary {
   std::size_t bytes = 0;        ///< peak over the run
   double bytes_per_point = 0.0; ///< mean over frames holding points
   double chamfer_m = 0.0;       ///< mean; NaN without octree_base in the run
+  double region_tested = 0.0;   ///< mean per update after the first (ECO's region)
+  double region_scale_min = 1.0;  ///< the smallest scale the budget took
+  std::size_t frames_over_budget = 0;
 };
 
 [[nodiscard]] MethodSummary summarize(const MethodRun& run);

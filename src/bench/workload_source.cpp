@@ -22,7 +22,7 @@ OpenedWorkload open_workload(const BenchOptions& options, const std::function<vo
     scans = std::move(opened.frames);
     out.source = options.data->string();
   } else {
-    sim::SimConfig sim;
+    sim::SimConfig sim = options.sim;
     sim.seed = options.seed;
     sim.frames = options.source.start + options.sim_frames;
     scans = workloads::frame_window(std::make_unique<SimWorkload>(sim), options.source.start);

@@ -1,4 +1,5 @@
-// `eco`: an EgoOctree, queried in batches spread over MapSettings::threads, kept between batches.
+// `eco` and `eco_ball`: an EgoOctree (holding the cube, or a ball in it), queried in batches
+// spread over MapSettings::threads, kept between batches.
 
 #include "odometry/maps.hpp"
 
@@ -9,9 +10,10 @@ namespace {
 
 class EcoMap final : public LocalMap {
  public:
-  explicit EcoMap(const MapSettings& settings) : tree_(ego_config(settings)), threads_(settings.threads) {}
+  EcoMap(const MapSettings& settings, bool ball)
+      : name_(ball ? "eco_ball" : "eco"), tree_(ego_config(settings, ball)), threads_(settings.threads) {}
 
-  [[nodiscard]] std::string name() const override { return "eco"; }
+  [[nodiscard]] std::string name() const override { return name_; }
   void update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) override { tree_.update(world_T_sensor, scan); }
   void knn(std::span<const Eigen::Vector3d> queries, std::size_t k, std::span<Neighbor> out,
            std::span<std::size_t> found) const override {
@@ -21,12 +23,15 @@ class EcoMap final : public LocalMap {
   [[nodiscard]] std::vector<Eigen::Vector3d> points() const override { return tree_.points(); }
 
  private:
+  std::string name_;
   EgoOctree tree_;
   mutable QueryThreads threads_;  // batches run one after another: a query is const, the pool is not
 };
 
 }  // namespace
 
-std::unique_ptr<LocalMap> make_eco_map(const MapSettings& settings) { return std::make_unique<EcoMap>(settings); }
+std::unique_ptr<LocalMap> make_eco_map(const MapSettings& settings, bool ball) {
+  return std::make_unique<EcoMap>(settings, ball);
+}
 
 }  // namespace eco::odometry

@@ -16,24 +16,29 @@ void MapSettings::validate() const {
   }
   if (max_points == 0) throw std::invalid_argument("map max_points must be >= 1, got 0");
   if (threads == 0) throw std::invalid_argument("map threads must be >= 1, got 0");
+  if (!(ball_radius > 0.0 && ball_radius <= box_side / 2)) {
+    throw std::invalid_argument("map ball_radius must be > 0 m and at most box_side / 2, got " + std::to_string(ball_radius));
+  }
 }
 
-Config ego_config(const MapSettings& settings) {
+Config ego_config(const MapSettings& settings, bool ball) {
   Config config;
   config.box_side = settings.box_side;
   config.insert_policy = InsertPolicy::AllInBox;
   config.density_cap = {settings.cell_size, settings.max_points};
+  if (ball) config.region = {RegionShape::Ball, settings.ball_radius};
   return config;
 }
 
 const std::vector<std::string>& local_map_names() {
-  static const std::vector<std::string> names{"eco", "voxel_hash"};
+  static const std::vector<std::string> names{"eco", "eco_ball", "voxel_hash"};
   return names;
 }
 
 std::unique_ptr<LocalMap> make_local_map(std::string_view name, const MapSettings& settings) {
   settings.validate();
-  if (name == "eco") return make_eco_map(settings);
+  if (name == "eco") return make_eco_map(settings, false);
+  if (name == "eco_ball") return make_eco_map(settings, true);
   if (name == "voxel_hash") return make_voxel_hash_map(settings);
   throw unknown_map(name, local_map_names());
 }

@@ -101,7 +101,9 @@ void OdometryConfig::validate() const {
   map_settings().validate();
 }
 
-MapSettings OdometryConfig::map_settings() const { return {box_side, voxel_size, max_points_per_voxel, threads}; }
+MapSettings OdometryConfig::map_settings() const {
+  return {box_side, voxel_size, max_points_per_voxel, threads, std::min(max_range, box_side / 2)};
+}
 
 struct Odometry::Impl {
   Impl(const OdometryConfig& c, std::unique_ptr<LocalMap> m)

@@ -105,7 +105,7 @@ City build_city(const SimConfig& config) {
   City city;
   Rng ego_rng(config.seed, 1);
   city.routes.emplace_back(ego_rng, Eigen::Vector2i(0, 0), 0, config.speed * duration + margin,
-                           m.block_pitch, m.turn_radius);
+                           m.block_pitch, m.turn_radius, config.manoeuvre != Manoeuvre::Straight);
 
   // The blocks within two of every intersection the sensor passes: all it can see at 120 m.
   std::set<std::pair<int, int>> blocks;

@@ -25,7 +25,7 @@ void Route::add(const Eigen::Vector2d& start, double heading, double length, dou
 }
 
 Route::Route(Rng& rng, Eigen::Vector2i start, int direction, double length, double pitch,
-             double turn_radius) {
+             double turn_radius, bool turns) {
   intersections_.push_back(start);
   intersection_arcs_.push_back(0.0);
   Eigen::Vector2d from = start.cast<double>() * pitch;  // where the next straight begins
@@ -34,7 +34,7 @@ Route::Route(Rng& rng, Eigen::Vector2i start, int direction, double length, doub
     intersections_.push_back(next);
     const Eigen::Vector2d corner = next.cast<double>() * pitch;
     const double r = rng.uniform();
-    const int turn = r < 0.5 ? 0 : (r < 0.75 ? 1 : -1);  // +1 left, -1 right
+    const int turn = !turns || r < 0.5 ? 0 : (r < 0.75 ? 1 : -1);  // +1 left, -1 right
     const double heading = direction * kHalfPi;
     if (turn == 0) {
       add(from, heading, (corner - from).norm(), 0.0);

@@ -18,9 +18,11 @@ struct RoutePoint {
 class Route {
  public:
   /// Starts at intersection `start` (grid units) heading along `direction` (0 E, 1 N, 2 W, 3 S);
-  /// at each intersection goes straight (1/2), left or right (1/4 each) until `length` metres. The
-  /// draws are made an intersection at a time: a longer route begins as a shorter one does.
-  Route(Rng& rng, Eigen::Vector2i start, int direction, double length, double pitch, double turn_radius);
+  /// at each intersection goes straight (1/2), left or right (1/4 each) until `length` metres; with
+  /// `turns` false, straight on at every one (the draws made all the same). The draws are made an
+  /// intersection at a time: a longer route begins as a shorter one does.
+  Route(Rng& rng, Eigen::Vector2i start, int direction, double length, double pitch, double turn_radius,
+        bool turns = true);
 
   /// The point at arc length s (clamped to the route), moved `offset` metres to the right.
   [[nodiscard]] RoutePoint at(double s, double offset = 0.0) const;

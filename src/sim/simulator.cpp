@@ -3,6 +3,7 @@
 #include <eco/io/kitti_sequence.hpp>
 
 #include "sim/city.hpp"
+#include "sim/manoeuvre.hpp"
 #include "sim/ray_caster.hpp"
 
 #include <algorithm>
@@ -26,11 +27,21 @@ void require(bool ok, const char* field, double value, const char* rule) {
 
 }  // namespace
 
+const std::map<std::string, Manoeuvre>& manoeuvre_names() {
+  static const std::map<std::string, Manoeuvre> names{
+      {"route", Manoeuvre::Route}, {"straight", Manoeuvre::Straight}, {"uturn", Manoeuvre::UTurn},
+      {"roundabout", Manoeuvre::Roundabout}, {"spin", Manoeuvre::Spin}, {"still", Manoeuvre::Still}};
+  return names;
+}
+
 void SimConfig::validate() const {
   require(frames >= 1, "frames", static_cast<double>(frames), "must be at least 1");
   require(rate_hz > 0.0 && std::isfinite(rate_hz), "rate_hz", rate_hz, "must be positive");
   require(speed >= 0.0 && speed <= 100.0, "speed", speed, "must be in [0, 100] m/s");
   require(sway_deg >= 0.0 && sway_deg <= 10.0, "sway_deg", sway_deg, "must be in [0, 10]");
+  require(spin_rate_deg >= -1e4 && spin_rate_deg <= 1e4, "spin_rate_deg", spin_rate_deg, "must be in [-10000, 10000]");
+  require(roundabout_radius >= 3.0 && roundabout_radius <= city.road_half_width, "roundabout_radius", roundabout_radius,
+          "must be in [3, city.road_half_width]: inside the intersection");
   const LidarModel& l = lidar;
   require(l.beams >= 1 && l.beams <= 1024, "lidar.beams", l.beams, "must be in [1, 1024]");
   require(l.columns >= 1 && l.columns <= 100000, "lidar.columns", l.columns, "must be in [1, 100000]");
@@ -88,7 +99,7 @@ Eigen::Isometry3d Simulator::pose(std::size_t index) const {
 
 Eigen::Isometry3d Simulator::pose_at(double t) const {
   const SimConfig& c = impl_->config;
-  const RoutePoint p = impl_->city.routes[0].at(c.speed * t, c.city.lane_offset);
+  const RoutePoint p = manoeuvre_at(c, impl_->city.routes[0], t);
   const double sway = c.sway_deg * kDegree;
   const double pitch = sway * std::sin(2.0 * std::numbers::pi * t / 2.3);
   const double roll = sway * std::sin(2.0 * std::numbers::pi * t / 3.1 + 1.0);

@@ -22,11 +22,18 @@ std::array<EgoRegion, kSteps + 1> scaled_regions(const Config& config, const Mot
   return scaled;
 }
 
-/// The least k at which scaled[k] holds `p`; kSteps + 1 when none does. The gauge guesses it and
-/// contains() decides (membership grows with k: the extents do).
+// how near a step the gauge (x kSteps) must fall for contains() to decide: far above its rounding
+// (1e-15 relative), so that a gauge this far from every step gives contains()'s verdict
+constexpr double kNearStep = 1e-7;
+
+/// The least k at which scaled[k] holds `p`; kSteps + 1 when none does. The gauge gives it; near a
+/// step, where rounding could tell otherwise, contains() decides (membership grows with k: the
+/// extents do).
 int least_step(const std::array<EgoRegion, kSteps + 1>& scaled, const std::array<float, 3>& p) {
-  const double g = scaled[kSteps].gauge(p);
-  int k = std::isfinite(g) ? int(std::clamp(std::ceil(g * kSteps), 1.0, double(kSteps + 1))) : kSteps + 1;
+  const double x = scaled[kSteps].gauge(p) * kSteps;
+  if (!(x <= kSteps + 1)) return kSteps + 1;  // beyond the whole region (or an extent of 0)
+  int k = int(std::clamp(std::ceil(x), 1.0, double(kSteps + 1)));
+  if (double(k) - x > kNearStep && x - double(k - 1) > kNearStep) return k;
   while (k <= kSteps && !scaled[k].contains(p)) ++k;
   while (k > 1 && scaled[k - 1].contains(p)) --k;
   return k;

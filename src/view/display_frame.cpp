@@ -23,6 +23,15 @@ void put_points(std::string& out, const std::vector<Eigen::Vector3f>& points, st
 
 std::size_t thinned(std::size_t count, std::size_t stride) { return (count + stride - 1) / stride; }
 
+/// The sensor's rotation, row by row: the page turns the region with it.
+nlohmann::json turn_of(const Eigen::Isometry3d& world_T_sensor) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) rows.push_back(world_T_sensor.linear()(row, col));
+  }
+  return rows;
+}
+
 }  // namespace
 
 std::size_t thinning_stride(std::size_t count, std::size_t budget) {
@@ -44,6 +53,7 @@ std::string display_bytes(const FrameRecord& r, std::size_t budget, bool with_vo
   const double step = r.step > 0.0 ? r.step : position_step(r.held);
   const nlohmann::json header{
       {"frame", r.frame},          {"sensor", {sensor.x(), sensor.y(), sensor.z()}},
+      {"turn", turn_of(r.world_T_sensor)},
       {"held", r.held.size()},     {"drawn", kept.size()},
       {"stride", stride},          {"step", step},
       {"has_intensity", !r.intensity.empty()}, {"has_ids", !r.id.empty()},

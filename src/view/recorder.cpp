@@ -21,8 +21,13 @@ Recorder::Recorder(const std::string& folder, const RunInfo& info) : folder_(fol
   for (const fs::directory_entry& entry : fs::directory_iterator(folder_)) {
     if (entry.path().extension() == ".bin") fs::remove(entry.path());  // an earlier recording's frames
   }
-  const nlohmann::json run{{"title", info.title},       {"box_side", info.box_side},
-                           {"voxel_size", info.voxel_size}, {"frames", info.frames},
+  const char* shapes[] = {"cube", "ball", "oriented_box"};
+  const nlohmann::json run{{"title", info.title},
+                           {"box_side", info.box_side},
+                           {"region", shapes[int(info.region)]},
+                           {"turn_with", info.turn_with == TurnWith::Full ? "full" : "yaw"},
+                           {"voxel_size", info.voxel_size},
+                           {"frames", info.frames},
                            {"has_reference", info.has_reference}};
   std::ofstream(fs::path(folder_) / kRunFile) << run.dump(2) << '\n';
   index_ = std::fopen((fs::path(folder_) / kIndexFile).c_str(), "w");

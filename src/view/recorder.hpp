@@ -9,6 +9,7 @@
 #include "view/frame_file.hpp"
 #include "view/run_index.hpp"
 
+#include <eco/config.hpp>
 #include <eco/types.hpp>
 
 #include <Eigen/Geometry>
@@ -30,6 +31,10 @@ struct RunInfo {
   /// False when the map does not count what it inserted, dropped and cleared (an odometry's
   /// maps): frames.csv then gets the recorder's own counts.
   bool map_counts = true;
+  /// The region the map holds in the cube, drawn instead of it (its size each frame from
+  /// FrameFigures::region).
+  RegionShape region = RegionShape::Cube;
+  TurnWith turn_with = TurnWith::Yaw;
 };
 
 /// What the recorder found changed since the last frame it recorded.

@@ -16,7 +16,9 @@ void write_index_row(std::FILE* index, const IndexRow& row) {
   } else {
     std::fprintf(index, ",,,");
   }
-  std::fprintf(index, "%zu,%zu,%zu,%zu,%zu,%.4f\n", f.scan, f.inserted, f.pruned, f.cleared, f.held, f.update_ms);
+  const RegionExtents& r = f.region;
+  std::fprintf(index, "%zu,%zu,%zu,%zu,%zu,%.4f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", f.scan, f.inserted, f.pruned,
+               f.cleared, f.held, f.update_ms, r.radius, r.ahead, r.behind, r.left, r.right, r.up, r.down);
   std::fflush(index);
 }
 
@@ -24,8 +26,10 @@ namespace {
 
 /// The row a line makes; throws std::invalid_argument naming the field that is wrong.
 IndexRow parse_row(const std::string& line) {
-  static const char* const kFields[] = {"frame", "x",        "y",      "z",       "ref_x", "ref_y",    "ref_z",
-                                        "scan",  "inserted", "pruned", "cleared", "held",  "update_ms"};
+  static const char* const kFields[] = {"frame",         "x",            "y",           "z",            "ref_x",
+                                        "ref_y",         "ref_z",        "scan",        "inserted",     "pruned",
+                                        "cleared",       "held",         "update_ms",   "region_radius", "region_ahead",
+                                        "region_behind", "region_left",  "region_right", "region_up",   "region_down"};
   std::vector<std::string> cells;
   std::stringstream in(line);
   for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
@@ -57,7 +61,13 @@ IndexRow parse_row(const std::string& line) {
   row.frame = std::uint32_t(count(0));
   row.sensor = {number(1), number(2), number(3)};
   if (!cells[4].empty() || !cells[5].empty() || !cells[6].empty()) row.reference = Eigen::Vector3d(number(4), number(5), number(6));
-  row.figures = {count(7), count(8), count(9), count(10), count(11), number(12)};
+  row.figures = {count(7), count(8), count(9), count(10), count(11), number(12), {}};
+  RegionExtents& r = row.figures.region;
+  double* extents[] = {&r.radius, &r.ahead, &r.behind, &r.left, &r.right, &r.up, &r.down};
+  for (std::size_t i = 0; i < std::size(extents); ++i) {
+    *extents[i] = number(13 + i);
+    if (*extents[i] < 0.0) throw std::invalid_argument("field " + std::string(kFields[13 + i]) + " is negative");
+  }
   return row;
 }
 

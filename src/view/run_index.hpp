@@ -2,6 +2,8 @@
 // A recording's index, view/frames.csv: a line a recorded frame, the frame's file written before
 // its line. The server reads it anew on each request, so a live run's new frames appear.
 
+#include <eco/types.hpp>
+
 #include <Eigen/Core>
 
 #include <cstdint>
@@ -15,12 +17,15 @@ namespace eco::view {
 
 inline constexpr const char* kRunFile = "run.json";
 inline constexpr const char* kIndexFile = "frames.csv";
-inline constexpr const char* kIndexHeader = "frame,x,y,z,ref_x,ref_y,ref_z,scan,inserted,pruned,cleared,held,update_ms";
+inline constexpr const char* kIndexHeader =
+    "frame,x,y,z,ref_x,ref_y,ref_z,scan,inserted,pruned,cleared,held,update_ms,"
+    "region_radius,region_ahead,region_behind,region_left,region_right,region_up,region_down";
 
 /// The figures the map reported for a frame (the page's panel and chart).
 struct FrameFigures {
   std::size_t scan = 0, inserted = 0, pruned = 0, cleared = 0, held = 0;
   double update_ms = 0.0;
+  RegionExtents region;  ///< the region the map held (Config::region as sized this frame); zeros: the cube
 };
 
 struct IndexRow {

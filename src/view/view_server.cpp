@@ -78,7 +78,7 @@ nlohmann::json run_json(const fs::path& recording) {
                          {"ref", nlohmann::json::array()},   {"scan", nlohmann::json::array()},
                          {"inserted", nlohmann::json::array()}, {"pruned", nlohmann::json::array()},
                          {"cleared", nlohmann::json::array()}, {"held", nlohmann::json::array()},
-                         {"update_ms", nlohmann::json::array()}};
+                         {"update_ms", nlohmann::json::array()}, {"region", nlohmann::json::array()}};
   for (const IndexRow& row : index.rows) {
     columns["frame"].push_back(row.frame);
     columns["x"].push_back(row.sensor.x());
@@ -92,6 +92,8 @@ nlohmann::json run_json(const fs::path& recording) {
     columns["cleared"].push_back(row.figures.cleared);
     columns["held"].push_back(row.figures.held);
     columns["update_ms"].push_back(row.figures.update_ms);
+    const RegionExtents& r = row.figures.region;
+    columns["region"].push_back({r.radius, r.ahead, r.behind, r.left, r.right, r.up, r.down});
   }
   out["frames"] = std::move(columns);
   out["error"] = index.error;

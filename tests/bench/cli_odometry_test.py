@@ -1,4 +1,4 @@
-"""eco odometry as a user drives it: four maps on the same simulated frames, each writing its
+"""eco odometry as a user drives it: five maps on the same simulated frames, each writing its
 poses (KITTI format, one line a frame) and per-frame figures, the summary naming every map with
 its accuracy; a folder without poses runs without accuracy figures and says so; fewer poses than
 scans, an unknown map, a folder of bad scans: refused with a message naming what is wrong.
@@ -26,7 +26,7 @@ def lines(*parts):
 
 eco("simulate", "--out", "sim", "--frames", "8", "--seed", "3")
 done = eco("odometry", "--data", "sim", "--map", "all", "--out", "all")
-maps = ["eco", "voxel_hash", "nanoflann", "pcl_octree"]
+maps = ["eco", "eco_ball", "voxel_hash", "nanoflann", "pcl_octree"]
 for m in maps:
     poses = lines("all", m, "poses.txt")
     check(len(poses) == 8 and all(len(p.split()) == 12 for p in poses), f"{m}/poses.txt: {poses}")

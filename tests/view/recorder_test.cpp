@@ -183,15 +183,18 @@ TEST(RunIndex, NamesTheLineAndFieldThatIsWrong) {
     return read_index((dir / "frames.csv").string());
   };
   const std::string header = std::string(kIndexHeader) + "\n";
-  const std::string row = "0,1,2,3,,,,10,5,0,0,5,0.25\n";
+  const std::string row = "0,1,2,3,,,,10,5,0,0,5,0.25,8,0,0,0,0,0,0\n";
   EXPECT_EQ(index_of(header + row).rows.size(), 1u);
   EXPECT_EQ(index_of(header + row + "1,1,2,3,,,,10,5").rows.size(), 1u);  // a line still being written
-  Index bad = index_of(header + row + "1,1,2,3,,,,10,five,0,0,5,0.25\n");
+  Index bad = index_of(header + row + "1,1,2,3,,,,10,five,0,0,5,0.25,8,0,0,0,0,0,0\n");
   EXPECT_EQ(bad.error, "frames.csv, line 3: field inserted is \"five\", not a number");
   EXPECT_EQ(bad.rows.size(), 1u);
-  EXPECT_EQ(index_of(header + "1,2\n").error, "frames.csv, line 2: 2 fields, not 13");
-  EXPECT_EQ(index_of(header + "1,1,2,3,,,,-10,5,0,0,5,0.25\n").error,
+  EXPECT_EQ(index_of(header + "1,2\n").error, "frames.csv, line 2: 2 fields, not 20");
+  EXPECT_EQ(index_of(header + "1,1,2,3,,,,-10,5,0,0,5,0.25,0,0,0,0,0,0,0\n").error,
             "frames.csv, line 2: field scan is \"-10\", not a count");
+  EXPECT_EQ(index_of(header + "1,1,2,3,,,,10,5,0,0,5,0.25,0,4,-1,0,0,0,0\n").error,
+            "frames.csv, line 2: field region_behind is negative");
+  EXPECT_EQ(index_of(header + row).rows[0].figures.region.radius, 8.0);
   EXPECT_EQ(index_of("frame,x\n").error.rfind("frames.csv, line 1: not the header", 0), 0u);
   EXPECT_EQ(read_index((dir / "none.csv").string()).error, "frames.csv: cannot be opened");
 }

@@ -8,6 +8,7 @@ docs/images/viewer.png, is a copy).
 
 usage: view_browser_test.py ECO_CLI WORK_DIR"""
 
+import math
 import os
 import sys
 
@@ -99,6 +100,32 @@ try:
     check(not driver.find_element(By.ID, "error").is_displayed(), "the error line stays")
     errors = console_errors(driver)
     check(errors and all("frame?n=3" in e and "422" in e for e in errors), f"console, damaged frame: {errors}")
+finally:
+    server.stop()
+
+# a region drawn as the map held it: a box turned with the heading (100 deg/s in place), 8 m ahead
+eco("simulate", "--out", "spin", "--frames", "12", "--manoeuvre", "spin", "--spin-rate", "100", "--beams", "16",
+    "--columns", "400")
+eco("run", "--data", "spin", "--record", "--out", "region", "--region.shape", "oriented_box", "--region.ahead", "8",
+    "--region.behind", "2", "--region.left", "3", "--region.right", "4", "--region.up", "2", "--region.down", "2")
+server = ViewServer([CLI, "view", "region", "--port", "0"], cwd=WORK)
+try:
+    driver.get("about:blank")
+    console_errors(driver)  # what the last page left
+    driver.get(server.url)
+    wait_until(driver, "return ecoView.ready && ecoView.frameCount === 12", "the region run's frames")
+    slider = driver.find_element(By.ID, "frame-slider")
+    slider.send_keys(Keys.END)
+    wait_until(driver, "return ecoView.frame === 11", "the region run's last frame")
+    drawn = driver.execute_script("return ecoView.region()")
+    check(drawn["box"] and not drawn["cube"] and not drawn["ball"], f"the region is not the drawn shape: {drawn}")
+    check(drawn["size"] == [10, 7, 4] and drawn["centre"] == [3, -0.5, 0], f"the box's extents: {drawn}")
+    turn = drawn["turn"]  # column-major: the box's x axis is turn[0:3]
+    check(abs(turn[2]) < 1e-6 and abs(turn[0] ** 2 + turn[1] ** 2 - 1) < 1e-6, f"a yaw box tilted: {turn}")
+    heading = math.degrees(math.atan2(turn[1], turn[0]))
+    check(abs(heading - 110.0) < 0.5, f"the box heads {heading} deg, the sensor 110 deg (1.1 s at 100 deg/s)")
+    errors = console_errors(driver)
+    check(not errors, f"console errors, region: {errors}")
 finally:
     server.stop()
 

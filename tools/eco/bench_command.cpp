@@ -5,6 +5,7 @@
 #include "source_flags.hpp"
 #include "config_options.hpp"
 #include "options_file.hpp"
+#include "sim_flags.hpp"
 
 #include "bench/machine.hpp"
 #include "bench/progress_bar.hpp"
@@ -41,6 +42,7 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--k", o->knn_k, "neighbours per query")->capture_default_str();
   cmd->add_option("--seed", o->seed, "query seed, and the simulator's without --data")->capture_default_str();
   cmd->add_option("--sim-frames", o->sim_frames, "length of the simulated drive without --data")->capture_default_str();
+  auto motion = std::make_shared<SimFlags>(*cmd, "--sim-", o->sim);
   cmd->add_flag("--check", o->check_every_frame, "check every method's invariants after every frame (slow)");
   auto brief = std::make_shared<bool>(false);
   cmd->add_flag("--brief", *brief, "print one table that fits a terminal (summary.md has them all)");
@@ -65,8 +67,9 @@ Run add_bench(CLI::App& app, const std::string& command_line) {
       "  eco bench --methods eco,nanoflann --knn-queries 5000 --k 10\n"
       "  eco bench --data ../shared/data/kitti_mini_08 --preset robot-cap-0.2 --out results/kitti08-robot-cap\n"
       "  eco bench --config results/kitti08-robot-cap/config.json --out results/again");
-  return [o, data, workload, preset, brief, cmd, flags, file, command_line] {
+  return [o, data, workload, preset, brief, cmd, flags, file, command_line, motion] {
     file->load();  // a config.json's values, for the options not given here
+    motion->apply(o->sim);
     // the preset first; every option given (on the command line or in the file) then overrides it
     const bench::BenchOptions given = *o;
     bench::apply_preset(*preset, *o);

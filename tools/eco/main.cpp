@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
       "                                                        all methods on the simulator's default drive\n"
       "  eco bench --data data/sim --methods eco,octree_base,nanoflann --out results/robot\n"
       "  eco run --data ../shared/data/kitti_mini_00 --export-every 5 --out results/run00\n"
-      "  eco odometry --frames 200 --map all                  a LiDAR odometry on four maps, same frames\n"
+      "  eco odometry --frames 200 --map all                  a LiDAR odometry on five maps, same frames\n"
       "  eco run --frames 60 --record --out results/run && eco view results/run\n"
       "                                                        the run in a web browser, frame by frame\n"
       "Run 'eco <command> --help' for each command's options.");

@@ -1,5 +1,5 @@
 // eco odometry: a scan-to-map LiDAR odometry (eco/odometry/odometry.hpp) over a sequence, with
-// one map or all four on the same frames; poses, per-frame figures, accuracy against the
+// one map or all five on the same frames; poses, per-frame figures, accuracy against the
 // reference poses and a plot of the trajectories go to --out.
 
 #include "commands.hpp"
@@ -61,8 +61,10 @@ void record_frame(view::Recorder& recorder, const odometry::Odometry& odo, const
                   const std::optional<Eigen::Vector3d>& reference) {
   std::vector<HeldPoint> held;
   for (const Eigen::Vector3d& p : odo.map().points()) held.push_back({p, {}});
-  recorder.record(std::uint32_t(f.index), f.pose, held, view::occupied_voxels(held, odo.config().voxel_size),
-                  {f.scan_points, 0, 0, 0, f.map_points, f.update_ms}, reference);
+  view::FrameFigures figures{f.scan_points, 0, 0, 0, f.map_points, f.update_ms, {}};
+  if (odo.map().name() == "eco_ball") figures.region.radius = odo.config().map_settings().ball_radius;
+  recorder.record(std::uint32_t(f.index), f.pose, held, view::occupied_voxels(held, odo.config().voxel_size), figures,
+                  reference);
 }
 
 int run(OdometryOptions o, const SourceFlags& data, const ViewFlags& viewing, const std::string& command_line) {
@@ -104,8 +106,9 @@ int run(OdometryOptions o, const SourceFlags& data, const ViewFlags& viewing, co
   std::fflush(stdout);  // the settings before the progress (on stderr), also into a pipe
   // the first map's run is recorded (in its child process) and, with --view, served from here
   const std::filesystem::path shown_folder = std::filesystem::path(o.out) / maps.front();
-  const view::RunInfo shown{"odometry on " + maps.front() + ", " + source, o.config.box_side, o.config.voxel_size,
-                            frames, !reference.empty(), false};
+  view::RunInfo shown{"odometry on " + maps.front() + ", " + source, o.config.box_side, o.config.voxel_size,
+                      frames, !reference.empty(), false};
+  if (maps.front() == "eco_ball") shown.region = RegionShape::Ball;
   LiveView live(viewing, shown_folder.string(), (shown_folder / "view").string(), shown);
   const std::size_t step = std::max<std::size_t>(1, frames / 10);
   bool lost = false;  // said once a spell (in each map's process: the flag is forked with it)
@@ -155,7 +158,7 @@ Run add_odometry(CLI::App& app, const std::string& command_line) {
       ->capture_default_str();
   std::vector<std::string> names = odometry::all_local_map_names();
   names.push_back("all");
-  cmd->add_option("--map", o->map, "the map registered against, or all four on the same frames")
+  cmd->add_option("--map", o->map, "the map registered against (eco_ball: ECO holding a ball of --max-range, as KISS-ICP's map), or all on the same frames")
       ->check(CLI::IsMember(names))
       ->capture_default_str();
   cmd->add_option(both_spellings("--max-range"), c.max_range, "[m] farther returns are dropped")->capture_default_str();
@@ -176,7 +179,7 @@ Run add_odometry(CLI::App& app, const std::string& command_line) {
       "run goes on, without accuracy figures. Defaults are KISS-ICP's for a 100 m LiDAR (voxel = range / 100).\n"
       "--record (and --view) record the first map's run for eco view into <out>/<map>/view.\n"
       "Examples:\n"
-      "  eco odometry --frames 200 --map all                 four maps on the simulator's drive\n"
+      "  eco odometry --frames 200 --map all                 five maps on the simulator's drive\n"
       "  eco odometry --data ../shared/data/kitti_mini_00 --map all --out results/odometry00\n"
       "  eco odometry --data ../shared/data/balm2_realworld_f20-99 --max-range 40 --voxel-size 0.4\n"
       "  eco odometry --frames 200 --view                   watch the first map's run in a browser as it goes");

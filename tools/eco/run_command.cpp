@@ -163,6 +163,8 @@ int run(const RunOptions& o, const SourceFlags& source, const ViewFlags& viewing
   std::printf("%6s %8s %8s %8s %8s %9s %8s %6s %6s %9s %7s\n", "frame", "scan", "inserted", "pruned", "cleared",
               "held", "nodes", "depth", "B/pt", "update ms", "trail");
   view::RunInfo shown{data.empty() ? "simulated drive" : data, config.box_side, o.voxel, total};
+  shown.region = config.region.shape;
+  shown.turn_with = config.region.turn_with;
   LiveView live(viewing, o.out, (std::filesystem::path(o.out) / "view").string(), shown);
   if (live.recorder() && first > 0) live.recorder()->carry(std::uint32_t(first - 1), tree.points_with_attributes());
   std::unique_ptr<TrailReport> trails;
@@ -187,7 +189,7 @@ int run(const RunOptions& o, const SourceFlags& source, const ViewFlags& viewing
     if (o.save_every > 0 && t % o.save_every == o.save_every - 1) tree.save(save_path(o));
     if (view::Recorder* recorder = live.recorder()) {
       recorder->record(std::uint32_t(t), frame.world_T_sensor, tree.points_with_attributes(), tree.voxel_keys(o.voxel),
-                       {u.scan_points, u.inserted, u.pruned, u.cleared, s.points, ms});
+                       {u.scan_points, u.inserted, u.pruned + u.over_budget, u.cleared, s.points, ms, u.region});
       live.pace();
     }
   }

@@ -33,6 +33,9 @@ struct MapSettings {
   double cell_size = 1.0;        ///< [m] side of the density cell (the voxel-hash map's voxel)
   std::uint32_t max_points = 20; ///< points kept per cell
   unsigned threads = 1;          ///< threads a batch of queries is spread over (ECO's batch KNN)
+  /// [m] `eco_ball`'s region: a ball this wide about the sensor inside the cube (KISS-ICP's map
+  /// keeps its max_range); at most box_side / 2.
+  double ball_radius = 100.0;
 
   /// Throws std::invalid_argument naming the first value out of range.
   void validate() const;

@@ -13,7 +13,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace eco::sim {
@@ -47,11 +49,27 @@ struct CityModel {
   double parked_car_chance = 0.5;  ///< per kerb-side parking slot
 };
 
+/// How the sensor vehicle moves through the city (SimConfig::manoeuvre), on the right-hand lane.
+enum class Manoeuvre {
+  Route,       ///< the streets, going straight or turning at each intersection (the default)
+  Straight,    ///< one street east, never turning: a motorway's straight
+  UTurn,       ///< east 40 m, a U-turn across the street, back west, a U-turn, and again
+  Roundabout,  ///< round the first intersection, anticlockwise, on a circle of roundabout_radius
+  Spin,        ///< standing on the street, turning in place at spin_rate_deg
+  Still,       ///< standing on the street
+};
+
+/// Each manoeuvre by the name the eco command gives it: route, straight, uturn, roundabout, spin, still.
+[[nodiscard]] const std::map<std::string, Manoeuvre>& manoeuvre_names();
+
 struct SimConfig {
   std::uint64_t seed = 1;
   std::size_t frames = 100;
   double rate_hz = 10.0;
   double speed = 10.0;             ///< [m/s] of the sensor vehicle: 1 m per frame at 10 Hz
+  Manoeuvre manoeuvre = Manoeuvre::Route;
+  double spin_rate_deg = 1000.0;   ///< [deg/s] Spin's
+  double roundabout_radius = 6.0;  ///< [m] Roundabout's: at 9.42 m/s it turns 90 deg/s
   double sway_deg = 0.3;           ///< amplitude of the vehicle's roll and pitch
   LidarModel lidar;
   CityModel city;

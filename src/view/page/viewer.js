@@ -40,9 +40,22 @@ const voxels = new THREE.Points(new THREE.BufferGeometry(),
   new THREE.PointsMaterial({ size: 0.1, sizeAttenuation: true, color: COLORS.voxel, transparent: true, opacity: 0.55 }));
 voxels.frustumCulled = false;
 scene.add(voxels);
-const box = new THREE.LineSegments(new THREE.EdgesGeometry(new THREE.BoxBufferGeometry(1, 1, 1)),
-  new THREE.LineBasicMaterial({ color: COLORS.box }));
+const boxMaterial = new THREE.LineBasicMaterial({ color: COLORS.box });
+const box = new THREE.LineSegments(new THREE.EdgesGeometry(new THREE.BoxBufferGeometry(1, 1, 1)), boxMaterial);
 scene.add(box);
+// Config::region as the map held it this frame: a ball (three great circles) or a box turned with
+// the sensor's heading (yaw) or its whole orientation (full); the group carries the turn
+const region = new THREE.Group();
+const ball = new THREE.Group();
+for (const axis of [[0, 0, 0], [Math.PI / 2, 0, 0], [0, Math.PI / 2, 0]]) {
+  const circle = new THREE.LineLoop(new THREE.BufferGeometry().setFromPoints(
+    Array.from({ length: 96 }, (_, i) => new THREE.Vector3(Math.cos(i * Math.PI / 48), Math.sin(i * Math.PI / 48), 0))), boxMaterial);
+  circle.rotation.set(...axis);
+  ball.add(circle);
+}
+const turnedBox = new THREE.LineSegments(box.geometry, boxMaterial);
+region.add(ball, turnedBox);
+scene.add(region);
 const sensor = new THREE.Mesh(new THREE.SphereBufferGeometry(0.25, 12, 8), new THREE.MeshBasicMaterial({ color: 0xff4040 }));
 scene.add(sensor);
 const path = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: COLORS.path }));
@@ -182,11 +195,33 @@ function draw() {
   setPoints(cleared, f.clearedXyz); cleared.visible = changes;
   setPoints(voxels, f.voxelXyz); voxels.visible = $('show-voxels').checked;
   voxels.material.size = f.voxel_size;
-  const side = state.run.run.box_side || 0;
-  box.scale.set(side, side, side); box.visible = side > 0 && $('show-box').checked;
+  drawRegion(f);
   drawPaths(f.sensor);
   updatePanel(f);
   render();
+}
+
+/// The cube, or the region the map holds in it (run.json's shape, frames.csv's extents).
+function drawRegion(f) {
+  const run = state.run.run, shown = $('show-box').checked, shape = run.region || 'cube';
+  const [radius, ahead, behind, left, right, up, down] = state.run.frames.region[state.index] || [0, 0, 0, 0, 0, 0, 0];
+  const side = run.box_side || 0;
+  box.scale.set(side, side, side);
+  box.visible = shown && side > 0 && shape === 'cube';
+  region.visible = shown && shape !== 'cube';
+  ball.visible = shape === 'ball';
+  turnedBox.visible = shape === 'oriented_box';
+  ball.scale.setScalar(Math.max(radius, 1e-3));
+  turnedBox.scale.set(Math.max(ahead + behind, 1e-3), Math.max(left + right, 1e-3), Math.max(up + down, 1e-3));
+  turnedBox.position.set((ahead - behind) / 2, (left - right) / 2, (up - down) / 2);
+  const r = f.turn || [1, 0, 0, 0, 1, 0, 0, 0, 1];
+  const turn = new THREE.Matrix4();
+  if (run.turn_with === 'full' || shape === 'ball') {
+    turn.set(r[0], r[1], r[2], 0, r[3], r[4], r[5], 0, r[6], r[7], r[8], 0, 0, 0, 0, 1);
+  } else {  // the heading alone: the sensor's x axis on the ground
+    turn.makeRotationZ(Math.atan2(r[3], r[0]));
+  }
+  region.setRotationFromMatrix(turn);
 }
 
 function drawPaths(origin) {
@@ -304,6 +339,11 @@ document.addEventListener('keydown', (e) => {
 window.addEventListener('resize', resize);
 
 /// Pixels unlike the background in the drawn canvas, and a checksum of them (the tests' eyes).
+window.ecoView.region = () => ({
+  cube: box.visible, ball: region.visible && ball.visible, box: region.visible && turnedBox.visible,
+  radius: ball.scale.x, size: turnedBox.scale.toArray(), centre: turnedBox.position.toArray(),
+  turn: region.matrixWorld.elements.slice(0, 11),
+});
 window.ecoView.pixels = () => {
   render();
   const gl = renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
