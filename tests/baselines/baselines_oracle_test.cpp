@@ -171,6 +171,37 @@ TEST(Baselines, UnknownNameAndUnsupportedConfigAreRejectedByName) {
   }
 }
 
+TEST(Baselines, EcoBallAndEcoBoxHoldTheirRegionExactly) {
+  Config cfg;
+  cfg.insert_policy = InsertPolicy::AllInBox;
+  cfg.leaf_capacity = 8;
+  for (const char* name : {"eco_ball", "eco_box"}) {
+    for (const Motion motion : {Motion::Smooth, Motion::Teleport}) {
+      SCOPED_TRACE(std::string(name) + " " + test::name(motion));
+      const std::unique_ptr<Method> method = make_method(name, cfg);
+      EXPECT_EQ(method->config().region.shape,
+                std::string(name) == "eco_ball" ? RegionShape::Ball : RegionShape::OrientedBox);
+      EXPECT_LE(method->config().region.reach(), cfg.box_side / 2);
+      stream_and_compare(name, cfg, Stream(motion, Cloud::Uniform, cfg.box_side, 99u), 16);
+      if (HasFatalFailure()) return;
+    }
+  }
+}
+
+TEST(Baselines, TheOthersRefuseARegionTheyCannotHold) {
+  Config ball;
+  ball.insert_policy = InsertPolicy::AllInBox;
+  ball.region = {RegionShape::Ball, 6.0};
+  for (const std::string& name : baselines::method_names()) {
+    SCOPED_TRACE(name);
+    if (name.rfind("eco", 0) == 0 || name == "scan_only") {  // ECO holds it; the scan is the Chamfer reference
+      EXPECT_NO_THROW((void)make_method(name, ball));
+      continue;
+    }
+    test::expect_rejected([&] { (void)make_method(name, ball); }, {"'" + name + "' holds the cube only", "region.shape = ball"});
+  }
+}
+
 TEST(Baselines, RejectedUpdateLeavesTheMethodUnchanged) {
   for (const std::string& name : baselines::method_names()) {
     SCOPED_TRACE(name);

@@ -1,5 +1,5 @@
 // The simulator: deterministic, the same world for a seed whatever the drive's length, HDL-64E-like
-// scans, a drive with straights and turns, labels that mark exactly the returns from moving cars,
+// scans, a drive with straights and turns, each manoeuvre moving as named, labels that mark exactly the returns from moving cars,
 // and KITTI output the reader reads back.
 
 #include <eco/io/kitti_sequence.hpp>
@@ -117,6 +117,61 @@ TEST(Simulator, DrivesAboutAMetreAFrameWithTurns) {
     turned += std::abs(std::atan2(fa.x() * fb.y() - fa.y() * fb.x(), fa.head<2>().dot(fb.head<2>())));
   }
   EXPECT_GT(turned, 80.0 * kDegree);  // at least one corner in 400 m
+}
+
+/// The heading of `pose`: its x axis on the ground [rad].
+double heading(const Eigen::Isometry3d& pose) { return std::atan2(pose.linear()(1, 0), pose.linear()(0, 0)); }
+/// `a` - `b` in (-pi, pi].
+double turn(double a, double b) { return std::remainder(a - b, 2.0 * std::numbers::pi); }
+
+TEST(Simulator, EveryManoeuvreMovesAsNamed) {
+  SimConfig config;
+  config.frames = 200;
+  config.sway_deg = 0.0;
+  for (const auto& [name, manoeuvre] : manoeuvre_names()) {
+    SCOPED_TRACE(name);
+    config.manoeuvre = manoeuvre;
+    const Simulator sim(config);
+    double turned = 0.0;
+    for (std::size_t i = 1; i < sim.size(); ++i) {
+      const Eigen::Isometry3d a = sim.pose(i - 1), b = sim.pose(i);
+      const double step = (b.translation() - a.translation()).norm();
+      const double yaw = turn(heading(b), heading(a));
+      turned += yaw;
+      switch (manoeuvre) {
+        case Manoeuvre::Route: break;  // DrivesAboutAMetreAFrameWithTurns
+        case Manoeuvre::Straight:
+          ASSERT_NEAR(step, 1.0, 1e-9) << i;
+          ASSERT_NEAR(heading(b), 0.0, 1e-12) << i;
+          ASSERT_NEAR(b.translation().y(), -config.city.lane_offset, 1e-9) << i;
+          break;
+        case Manoeuvre::UTurn:
+        case Manoeuvre::Roundabout:  // the chord of a 1 m arc
+          ASSERT_GT(step, 0.95) << i;
+          ASSERT_LE(step, 1.0 + 1e-9) << i;
+          if (manoeuvre == Manoeuvre::Roundabout) {
+            ASSERT_NEAR(b.translation().head<2>().norm(), config.roundabout_radius, 1e-9) << i;
+            ASSERT_NEAR(yaw, 1.0 / config.roundabout_radius, 1e-9) << i;  // anticlockwise, v / r
+          }
+          break;
+        case Manoeuvre::Spin:
+          ASSERT_EQ(b.translation(), a.translation()) << i;
+          ASSERT_NEAR(yaw, turn(config.spin_rate_deg * kDegree / config.rate_hz, 0.0), 1e-9) << i;
+          break;
+        case Manoeuvre::Still: ASSERT_EQ(b.matrix(), a.matrix()) << i; break;
+      }
+    }
+    if (manoeuvre == Manoeuvre::UTurn) {  // 199 m round a 95.7 m stadium: two laps, two U-turns each
+      EXPECT_NEAR(turned, 4.0 * std::numbers::pi, 1e-6);
+    }
+  }
+  config.manoeuvre = Manoeuvre::Spin;
+  config.spin_rate_deg = 20000.0;
+  EXPECT_THROW(Simulator{config}, std::invalid_argument);
+  config.manoeuvre = Manoeuvre::Roundabout;
+  config.spin_rate_deg = 1000.0;
+  config.roundabout_radius = 9.0;  // past the road's half width: off the intersection
+  EXPECT_THROW(Simulator{config}, std::invalid_argument);
 }
 
 TEST(Simulator, LabelsMarkExactlyTheReturnsThatMove) {
