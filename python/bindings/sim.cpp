@@ -62,6 +62,9 @@ struct Record<SimConfig> {
         field("frames", &SimConfig::frames, "length of the drive"),
         field("rate_hz", &SimConfig::rate_hz, "[Hz] scans per second"),
         field("speed", &SimConfig::speed, "[m/s] of the sensor vehicle"),
+        field("manoeuvre", &SimConfig::manoeuvre, "Manoeuvre: how the vehicle moves (route by default)"),
+        field("spin_rate_deg", &SimConfig::spin_rate_deg, "[deg/s] Manoeuvre.spin's"),
+        field("roundabout_radius", &SimConfig::roundabout_radius, "[m] Manoeuvre.roundabout's"),
         field("sway_deg", &SimConfig::sway_deg, "[deg] amplitude of the vehicle's roll and pitch"),
         field("lidar", &SimConfig::lidar, "LidarModel (or a dict of its fields)"),
         field("city", &SimConfig::city, "CityModel (or a dict of its fields)"),
@@ -96,6 +99,13 @@ sensor on a car at 10 m/s, 10 Hz; returns from moving cars carry label 252.)";
 }  // namespace
 
 void bind_sim(py::module_& s) {
+  py::enum_<sim::Manoeuvre>(s, "Manoeuvre", "How the simulated vehicle moves (SimConfig.manoeuvre).")
+      .value("route", sim::Manoeuvre::Route, "The streets, going straight or turning at each intersection. Default.")
+      .value("straight", sim::Manoeuvre::Straight, "One street east, never turning.")
+      .value("uturn", sim::Manoeuvre::UTurn, "East 40 m, a U-turn across the street, back west, a U-turn, again.")
+      .value("roundabout", sim::Manoeuvre::Roundabout, "Round the first intersection, anticlockwise.")
+      .value("spin", sim::Manoeuvre::Spin, "Standing on the street, turning in place at spin_rate_deg.")
+      .value("still", sim::Manoeuvre::Still, "Standing on the street.");
   bind_record<LidarModel>(s, "The simulated sensor.", Access::ReadWrite);
   bind_record<CityModel>(s, "The simulated city.", Access::ReadWrite);
   bind_record<SimConfig>(s, "Configuration of a Simulator (eco::sim::SimConfig).",

@@ -30,6 +30,19 @@ def test_simulator_is_deterministic_and_seeded():
     assert a[1][1].shape != c[1][1].shape or not np.array_equal(a[1][1], c[1][1])
 
 
+def test_a_manoeuvre_by_name_spins_in_place():
+    sim = eco.sim.Simulator(frames=5, manoeuvre="spin", spin_rate_deg=100.0, sway_deg=0.0,
+                            lidar={"beams": 8, "columns": 100})
+    assert sim.config.manoeuvre == eco.sim.Manoeuvre.spin
+    poses = [pose for pose, _ in sim]
+    for a, b in zip(poses, poses[1:]):
+        np.testing.assert_array_equal(a[:3, 3], b[:3, 3])
+        turned = np.degrees(np.arctan2(b[1, 0], b[0, 0]) - np.arctan2(a[1, 0], a[0, 0]))
+        assert (turned + 180.0) % 360.0 - 180.0 == pytest.approx(10.0)
+    with pytest.raises(ValueError):
+        eco.sim.Simulator(frames=5, manoeuvre="backflip")
+
+
 def test_simulated_frame_carries_time_reflectance_and_labels():
     scan = tiny().frame(3)
     assert scan.index == 3 and scan.time == pytest.approx(0.3)
