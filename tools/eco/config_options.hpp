@@ -35,6 +35,8 @@ inline std::string describe_settings(const Config& c) {
     s << ", region: a box " << r.ahead << " m ahead, " << r.behind << " behind, " << r.left << " left, " << r.right
       << " right, " << r.up << " up, " << r.down << " down, turned by " << (r.turn_with == TurnWith::Yaw ? "heading" : "every turn");
   }
+  if (r.lookahead > 0.0) s << ", leading by " << r.lookahead << " s of its speed";
+  if (r.max_points > 0) s << ", at most " << r.max_points << " points";
   return s.str();
 }
 
