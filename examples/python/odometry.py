@@ -26,7 +26,7 @@ def main():
 
     drive = eco.sim.Simulator(frames=args.frames, seed=1)
     tracks = {}
-    for name in eco.odometry.map_names():  # "eco", and KISS-ICP's voxel-hash map to compare
+    for name in eco.odometry.map_names():  # "eco", "eco_ball" (a ball of max_range), KISS-ICP's voxel-hash map
         odo = eco.odometry.Odometry(map=name)  # KISS-ICP's settings for a 100 m LiDAR
         odo.set_start(drive.pose(0))           # share the reference's world frame
         frame_ms = [odo.register_frame(points).total_ms for _, points in drive]

@@ -31,5 +31,5 @@ def test_scipy_comparison_prints_its_ratios():
 def test_odometry_example_tracks_the_drive_and_writes_its_plot(tmp_path):
     plot = tmp_path / "odometry.png"
     out = run("odometry.py", "--frames", "15", "--out", str(plot))
-    assert out.count("ms a frame") == 2 and "ATE" in out
+    assert out.count("ms a frame") == 3 and "ATE" in out  # eco, eco_ball, voxel_hash
     assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -20,7 +20,7 @@ template <std::size_t kStride>
     std::uint32_t code = 0, sure = 1;
     for (std::size_t a = 0; a < 3; ++a) {
       const double above = (double(points[i * kStride + a]) - g.low[a]) * g.inverse[a];
-      const double held = std::min(std::max(above, 0.0), top);  // NaN: 0
+      const double held = std::min(std::max(0.0, above), top);  // NaN: 0 (max(a, b) keeps a unless a < b)
       const auto j = std::uint32_t(std::int32_t(held));
       const double fraction = above - double(j);
       sure &= std::uint32_t(fraction > kSure) & std::uint32_t(fraction < 1.0 - kSure);

@@ -16,8 +16,8 @@ void MapSettings::validate() const {
   }
   if (max_points == 0) throw std::invalid_argument("map max_points must be >= 1, got 0");
   if (threads == 0) throw std::invalid_argument("map threads must be >= 1, got 0");
-  if (!(ball_radius > 0.0 && ball_radius <= box_side / 2)) {
-    throw std::invalid_argument("map ball_radius must be > 0 m and at most box_side / 2, got " + std::to_string(ball_radius));
+  if (!(std::isfinite(ball_radius) && ball_radius > 0.0)) {
+    throw std::invalid_argument("map ball_radius must be finite and > 0 m, got " + std::to_string(ball_radius));
   }
 }
 
@@ -26,7 +26,7 @@ Config ego_config(const MapSettings& settings, bool ball) {
   config.box_side = settings.box_side;
   config.insert_policy = InsertPolicy::AllInBox;
   config.density_cap = {settings.cell_size, settings.max_points};
-  if (ball) config.region = {RegionShape::Ball, settings.ball_radius};
+  if (ball) config.region = {RegionShape::Ball, std::min(settings.ball_radius, settings.box_side / 2)};
   return config;
 }
 

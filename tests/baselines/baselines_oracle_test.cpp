@@ -62,9 +62,16 @@ std::string param_name(const ::testing::TestParamInfo<Params>& info) {
          test::name(cloud) + (small_leaves ? "_OnePointLeaves" : "");
 }
 
+/// Every method that holds the cube (eco_ball and eco_box: EcoBallAndEcoBoxHoldTheirRegionExactly).
+std::vector<std::string> cube_methods() {
+  std::vector<std::string> names = baselines::method_names();
+  std::erase_if(names, [](const std::string& n) { return n == "eco_ball" || n == "eco_box"; });
+  return names;
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Methods, BaselineOracle,
-    ::testing::Combine(::testing::ValuesIn(baselines::method_names()),
+    ::testing::Combine(::testing::ValuesIn(cube_methods()),
                        ::testing::Values(InsertPolicy::ShiftInOnly, InsertPolicy::AllInBox),
                        ::testing::Values(Motion::Smooth, Motion::Still, Motion::Backwards, Motion::Diagonal,
                                          Motion::Teleport),
@@ -157,8 +164,9 @@ TEST(Baselines, UnknownNameAndUnsupportedConfigAreRejectedByName) {
   clearing.clearing.enabled = true;
   Config attributed;
   attributed.attributes.ids = true;
-  for (const auto& [config, words] : {std::pair(aged, "max_age_frames = 3"), std::pair(clearing, "clearing.enabled = true"),
-                                      std::pair(attributed, "attributes.ids")}) {
+  for (const auto& [unsupported, words] : {std::pair(aged, "max_age_frames = 3"), std::pair(clearing, "clearing.enabled = true"),
+                                           std::pair(attributed, "attributes.ids")}) {
+    const Config& config = unsupported;  // a structured binding is not captured by clang 14's lambdas
     for (const char* flat : {"nanoflann", "pcl_octree", "scan_pass"}) {
       SCOPED_TRACE(flat);
       test::expect_rejected([&] { (void)make_method(flat, config); }, {words});

@@ -43,7 +43,7 @@ check([m["map"] for m in summary["maps"]] == maps, str(summary))
 for m in summary["maps"]:  # the simulator's 8 frames are recovered to a few centimetres by every map
     check(m["errors"]["ate_rmse_m"] < 0.05, f"{m['map']}: ATE {m['errors']['ate_rmse_m']} m")
 svg = open(path("all", "trajectory.svg")).read()
-check(svg.count("class='estimate'") == 4 and "class='reference'" in svg, "trajectory.svg lacks a line")
+check(svg.count("class='estimate'") == 5 and "class='reference'" in svg, "trajectory.svg lacks a line")
 config = json.load(open(path("all", "config.json")))
 check(os.path.isabs(config["odometry"]["data"]), "config.json keeps the data folder as typed")
 

@@ -34,7 +34,7 @@ struct MapSettings {
   std::uint32_t max_points = 20; ///< points kept per cell
   unsigned threads = 1;          ///< threads a batch of queries is spread over (ECO's batch KNN)
   /// [m] `eco_ball`'s region: a ball this wide about the sensor inside the cube (KISS-ICP's map
-  /// keeps its max_range); at most box_side / 2.
+  /// keeps its max_range); past box_side / 2, the cube's half side.
   double ball_radius = 100.0;
 
   /// Throws std::invalid_argument naming the first value out of range.
