@@ -24,8 +24,12 @@ all: build
 deps:
 	@scripts/install-deps.sh $(DEBIAN_PACKAGES)
 
+## The release build leaves the C++ unit tests to the sanitizer phase (UNIT_TESTS=ON builds them
+## here too): compiled twice, they were a third of `make test`'s time.
+UNIT_TESTS ?= OFF
+RELEASE_CONFIG = -DCMAKE_BUILD_TYPE=Release -DECO_BUILD_PYTHON=ON -DECO_UNIT_TESTS=$(UNIT_TESTS) -DPython_EXECUTABLE=$(PYTHON)
 build: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DECO_BUILD_PYTHON=ON -DPython_EXECUTABLE=$(PYTHON)
+	cmake -S . -B $(BUILD) $(RELEASE_CONFIG)
 	cmake --build $(BUILD) -j $(JOBS)
 
 ## demo: the question a newcomer brings (should I use this instead of PCL's octree, a k-d tree, a
@@ -37,7 +41,7 @@ DEMO_DATA   ?= $(BUILD)/sim-default
 DEMO_FRAMES ?= 120
 DEMO_OUT    ?= $(BUILD)/demo
 demo: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DECO_BUILD_PYTHON=ON -DPython_EXECUTABLE=$(PYTHON)
+	cmake -S . -B $(BUILD) $(RELEASE_CONFIG)
 	cmake --build $(BUILD) -j $(JOBS) --target eco_cli
 	@test -f $(DEMO_DATA)/poses.txt || $(BUILD)/bin/eco simulate --out $(DEMO_DATA) --frames $(DEMO_FRAMES) --seed 1
 	@rm -rf $(DEMO_OUT)  # each run's results in folders of their own: eco bench refuses an earlier run's
@@ -52,11 +56,11 @@ demo: deps
 	$(BUILD)/bin/eco bench --data $(DEMO_DATA) --preset paper --workload dynamic --brief --out $(DEMO_OUT)/paper-dynamic
 	@printf '\nTo watch a drive in a web browser as ECO takes it in: $(BUILD)/bin/eco run --frames 60 --view\n'
 
-## test: every test (C++ and, through pytest, Python), in a release build; the C++ tests again
-## under AddressSanitizer + UBSan, built by clang (its UBSan also checks float-to-int conversions,
-## which GCC's leaves out, and it compiles the tests in two thirds of GCC's time); the concurrency
-## tests under ThreadSanitizer; then each parser's libFuzzer target for a fixed time
-## (FUZZ_SECONDS) under ASan + UBSan.
+## test: the command-line, Python, viewer and install tests and the vector loops' in a release
+## build; every C++ unit test under AddressSanitizer + UBSan, built by clang (its UBSan also
+## checks float-to-int conversions, which GCC's leaves out, and it compiles the tests in two
+## thirds of GCC's time); the concurrency tests under ThreadSanitizer; then each parser's
+## libFuzzer target for a fixed time (FUZZ_SECONDS) under ASan + UBSan.
 FUZZ_SECONDS ?= 10
 ## The sanitized builds keep line tables only: all a sanitizer's report needs, and about 30 % less
 ## time to compile than full debug information.
