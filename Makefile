@@ -84,7 +84,7 @@ test-threads: deps
 test-fuzz: deps
 	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ $(SANITIZED_DEBUG) -DECO_FUZZ=ON \
 	  -DECO_BUILD_TESTS=OFF -DECO_BUILD_TOOLS=OFF -DECO_BUILD_EXAMPLES=OFF -DECO_FUZZ_SECONDS=$(FUZZ_SECONDS)
-	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzzers
 	ctest --test-dir $(FUZZ_BUILD) --output-on-failure -j $(JOBS)
 
 ## python: the Python package eco, built by pip through setuptools and our CMake, offline, for
