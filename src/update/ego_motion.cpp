@@ -42,8 +42,9 @@ double scan_time(ScanView scan) {
 /// Config::region at `motion`'s pose, sized for its speed (the budget narrows it after the scan
 /// is in), and whether it moved since the `last` frame's.
 void place_region(Motion& motion, const Config& config, const Motion& last, ScanView scan) {
-  motion.region_size = next_region_size(config.region, last.region_size, motion.moved, scan_time(scan),
-                                        config.box_side / 2);
+  // the scan's time only for the lookahead's speed: a pass over the scan's times the others skip
+  const double time = config.region.lookahead > 0.0 ? scan_time(scan) : std::numeric_limits<double>::quiet_NaN();
+  motion.region_size = next_region_size(config.region, last.region_size, motion.moved, time, config.box_side / 2);
   motion.region = EgoRegion::at(config.region, motion.region_size, motion.pose, motion.anchor);
   motion.region_moved = motion.region && !(last.region && *last.region == *motion.region);
 }
