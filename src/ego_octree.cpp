@@ -2,9 +2,9 @@
 // update/; the queries, shared with snapshots, in map_reader.cpp.
 
 #include "clearing/clearing.hpp"
-#include "core/invariants.hpp"
-#include "core/tree.hpp"
-#include "persist/byte_stream.hpp"
+#include "core/tree/invariants.hpp"
+#include "core/tree/tree.hpp"
+#include "bytes/byte_stream.hpp"
 #include "persist/map_codec.hpp"
 #include "persist/map_file.hpp"
 #include "query/frames.hpp"

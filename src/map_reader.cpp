@@ -1,7 +1,7 @@
 // The queries of a held map, for the live tree and its snapshots alike (src/query does the work).
 
-#include "core/invariants.hpp"
-#include "core/tree.hpp"
+#include "core/tree/invariants.hpp"
+#include "core/tree/tree.hpp"
 #include "query/queries.hpp"
 
 #include <eco/map_reader.hpp>

@@ -1,6 +1,6 @@
-// A snapshot: a read-only tree sharing the live tree's pages (core/shared_pages.hpp).
+// A snapshot: a read-only tree sharing the live tree's pages (core/storage/shared_pages.hpp).
 
-#include "core/tree.hpp"
+#include "core/tree/tree.hpp"
 
 #include <eco/snapshot.hpp>
 

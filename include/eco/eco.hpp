@@ -4,5 +4,6 @@
 
 #include <eco/config.hpp>
 #include <eco/ego_octree.hpp>
+#include <eco/process_heap.hpp>
 #include <eco/types.hpp>
 #include <eco/version.hpp>

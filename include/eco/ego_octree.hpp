@@ -3,11 +3,14 @@
 /// The Ego-Centric Octree: an octree of the points inside a cube of side L that travels with the
 /// sensor.
 ///
-/// Contract (see docs/DESIGN.md §1):
+/// Contract (docs/design.md explains how each part is kept):
 /// * Ego box: Box(p) = [p - L/2, p + L/2) per world axis, p the sensor position. Membership is
 ///   tested on the stored coordinates, so it is exact.
+/// * The region R_t (Config::region) is the box itself (`cube`, the default) or a ball or an
+///   oriented box about the sensor inside it.
 /// * After update() returns, the held points are exactly
-///   { p in held(t-1) ∪ inserted(t) : p in Box(p_t) }, minus density-cap refusals and aged points.
+///   { p in held(t-1) ∪ inserted(t) : p in Box(p_t) ∩ R_t }, minus density-cap refusals, cleared
+///   and aged points.
 /// * Queries (knn, radius, box, voxelize) are exact over the held points.
 /// * Points are stored as float offsets from a world "precision origin" kept within 2 km of the
 ///   sensor (moved in steps of 1024 m), so precision does not degrade with distance travelled:

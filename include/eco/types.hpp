@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -72,6 +73,13 @@ struct VoxelKey {
   friend bool operator==(const VoxelKey&, const VoxelKey&) = default;
   friend auto operator<=>(const VoxelKey&, const VoxelKey&) = default;
 };
+
+/// The world-aligned voxel of side `side` holding `p` (any vector with x(), y(), z()).
+template <class Vector>
+[[nodiscard]] VoxelKey voxel_of(const Vector& p, double side) {
+  return {std::int64_t(std::floor(double(p.x()) / side)), std::int64_t(std::floor(double(p.y()) / side)),
+          std::int64_t(std::floor(double(p.z()) / side))};
+}
 
 /// What the tree holds now. Computed by a walk over the nodes: O(nodes).
 struct Stats {

@@ -14,6 +14,10 @@ neighbours, radius, box, voxel map) are exact over the held points.
 Modules: eco (EgoOctree, Config and its enums, Stats, UpdateStats), eco.io (KittiSequence, PLY,
 PCD, KITTI files), eco.sim (Simulator, SimConfig), eco.odometry (a LiDAR odometry on ECO's map:
 Odometry, trajectory_errors). Every class and function has a docstring.
+
+Importing eco calls eco.keep_freed_heap(): the C library keeps what a frame frees for the next
+frame (up to 128 MiB) instead of handing it back to the kernel, so that the arrays a frame loop
+makes each frame do not fault fresh pages every frame (include/eco/process_heap.hpp).
 """
 
 from . import _eco
@@ -21,5 +25,6 @@ from ._reexport import reexport
 
 __all__ = reexport(_eco, globals(), __name__) + ["io", "sim", "odometry"]
 __version__ = _eco.__version__
+_eco.keep_freed_heap()
 
 from . import io, odometry, sim  # noqa: E402  (after the core names, which they use)

@@ -3,9 +3,9 @@
 // so that they take in exactly ECO's points: the pose, the precision origin and the ego box,
 // the admission of scan points, and the density cap's cell counts.
 
-#include "core/cell_counts.hpp"
-#include "core/density_gate.hpp"
-#include "core/tree.hpp"
+#include "core/density/cell_counts.hpp"
+#include "core/density/density_gate.hpp"
+#include "core/tree/tree.hpp"
 #include "update/admission.hpp"
 #include "query/queries.hpp"
 #include "update/stages.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // One maker per method, each defined in the method's own file.
 
-#include <eco/baselines/method.hpp>
+#include "baselines/method.hpp"
 
 namespace eco::baselines {
 

@@ -4,11 +4,11 @@
 // update strategy differs. This base class provides everything but update().
 
 #include "clearing/clearing.hpp"
-#include "core/invariants.hpp"
-#include "core/tree.hpp"
+#include "core/tree/invariants.hpp"
+#include "core/tree/tree.hpp"
 #include "query/queries.hpp"
 
-#include <eco/baselines/method.hpp>
+#include "baselines/method.hpp"
 
 #include <memory>
 #include <string>

@@ -5,7 +5,7 @@
 
 #include <eco/io/error.hpp>
 #include <eco/io/kitti.hpp>
-#include <eco/odometry/baseline_maps.hpp>
+#include "odometry/baseline_maps.hpp"
 
 #include <sys/mman.h>
 #include <sys/wait.h>

@@ -6,7 +6,7 @@
 #include "bench/stopwatch.hpp"
 #include "bench/workload_source.hpp"
 
-#include <eco/baselines/method.hpp>
+#include "baselines/method.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -5,7 +5,7 @@
 
 #include "clearing/clearing.hpp"
 #include "clearing/pixel_stream.hpp"
-#include "core/subtree_filter.hpp"
+#include "core/tree/subtree_filter.hpp"
 
 #include <algorithm>
 #include <bit>

@@ -10,8 +10,8 @@
 
 #include "clearing/pixel_lookup.hpp"
 #include "clearing/scan_judge.hpp"
-#include "core/motion.hpp"
-#include "core/tree.hpp"
+#include "core/geometry/motion.hpp"
+#include "core/tree/tree.hpp"
 
 #include <eco/types.hpp>
 

@@ -10,7 +10,7 @@
 namespace eco::detail {
 
 /// [deg] fast_atan2_degrees' error bound: the polynomial's 7.2e-6 and single precision's rounding
-/// (tests/core/pixel_lookup_test.cpp measures below 2.5e-5).
+/// (tests/clearing/pixel_lookup_test.cpp measures below 2.5e-5).
 inline constexpr double kFastAtan2Error = 3e-5;
 
 /// atan(t) ~ t * P(t^2) on [0, 1] in degrees: a weighted least-squares Chebyshev fit of degree 7

@@ -15,7 +15,7 @@
 #include "clearing/clearing.hpp"
 #include "clearing/pixel_stream.hpp"
 #include "clearing/scan_judge.hpp"
-#include "core/subtree_filter.hpp"
+#include "core/tree/subtree_filter.hpp"
 
 #include <algorithm>
 #include <utility>

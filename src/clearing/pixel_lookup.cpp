@@ -4,7 +4,7 @@
 #include <limits>
 #include <span>
 
-#include "core/vector_clones.hpp"
+#include "core/geometry/vector_clones.hpp"
 #include "clearing/fast_atan2.hpp"
 
 namespace eco::detail {
@@ -87,7 +87,7 @@ void build_tables(const SensorModel& sensor, int rows, int columns, std::vector<
 }  // namespace
 
 /// Tier 1 for a whole group (every lane; those past its size are ignored): each point's pixel,
-/// kOutside, or kUndecided, in vector code (core/vector_clones.hpp; |v| rounded as Eigen's norm()
+/// kOutside, or kUndecided, in vector code (core/geometry/vector_clones.hpp; |v| rounded as Eigen's norm()
 /// rounds it: (x^2 + y^2) + z^2). Every comparison is false for NaN (a point straight up or down,
 /// or the origin), which leaves it undecided.
 template <PixelLookup::Reach kReach>

@@ -3,7 +3,7 @@
 // as the formulas give it and much faster: free-space clearing looks one up for every return and
 // every held point in range. Three tiers, each deciding only where its error cannot matter:
 //
-// 1. Groups of points in vector code (core/vector_clones.hpp: four lanes with SSE2, eight with
+// 1. Groups of points in vector code (core/geometry/vector_clones.hpp: four lanes with SSE2, eight with
 //    AVX2, sixteen with AVX-512, whose clone made the update with clearing 6-8 % faster), in
 //    single precision: elevation and azimuth by a polynomial arctangent
 //    (src/clearing/fast_atan2.hpp), row and column by truncation, wherever both angles lie farther

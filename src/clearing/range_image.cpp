@@ -1,6 +1,6 @@
 #include "clearing/range_image.hpp"
 
-#include "core/vector_clones.hpp"
+#include "core/geometry/vector_clones.hpp"
 #include "clearing/pixel_stream.hpp"
 #include "clearing/sensor_frame.hpp"
 

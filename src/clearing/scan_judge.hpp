@@ -3,7 +3,7 @@
 // it was taken from, and its range image. Shared by the clearing stage (src/clearing/free_space.cpp)
 // and the arrivals' check at insertion (src/clearing/arrivals.cpp).
 
-#include "core/geometry.hpp"
+#include "core/geometry/geometry.hpp"
 #include "clearing/clearing_rule.hpp"
 #include "clearing/pixel_lookup.hpp"
 #include "clearing/range_image.hpp"

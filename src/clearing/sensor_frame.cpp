@@ -1,6 +1,6 @@
 #include "clearing/sensor_frame.hpp"
 
-#include "core/vector_clones.hpp"
+#include "core/geometry/vector_clones.hpp"
 
 namespace eco::detail {
 

@@ -1,5 +1,5 @@
 #pragma once
-// Points in the sensor's frame, a group at a time in vector code (core/vector_clones.hpp), for
+// Points in the sensor's frame, a group at a time in vector code (core/geometry/vector_clones.hpp), for
 // free-space clearing, which looks up the pixel of every return and of every held point in view,
 // every frame: held points rotated into it, a scan's returns (already in it) loaded.
 
@@ -41,7 +41,7 @@ void load_returns(const float* data, std::size_t stride, std::size_t n, PixelLoo
 
 /// `out` = pose.apply() of every lane of `in` (all kGroup of them; out.size = in.size), summed in
 /// the order Eigen sums a 3×3 product (the first two rows left to right, the third right first;
-/// tests/core/sensor_frame_test.cpp).
+/// tests/clearing/sensor_frame_test.cpp).
 void to_sensor_frame(const SensorPose& pose, const StoredGroup& in, PixelLookup::Group& out);
 
 }  // namespace eco::detail

@@ -1,12 +1,12 @@
-// `nanoflann` and `pcl_octree`: the benchmark's baselines (eco/baselines/method.hpp) behind the
+// `nanoflann` and `pcl_octree`: the benchmark's baselines (src/baselines/method.hpp) behind the
 // odometry's interface. They hold exactly the points ECO holds (its admission and density cap)
 // and answer exact KNN, one query at a time.
 
-#include <eco/odometry/baseline_maps.hpp>
+#include "odometry/baseline_maps.hpp"
 
 #include "odometry/maps.hpp"
 
-#include <eco/baselines/method.hpp>
+#include "baselines/method.hpp"
 
 #include <algorithm>
 

@@ -2,10 +2,10 @@
 
 #include "persist/map_codec.hpp"
 
-#include "core/tree_parts.hpp"
-#include "persist/byte_stream.hpp"
-#include "persist/checksum.hpp"
-#include "update/stages.hpp"
+#include "bytes/byte_stream.hpp"
+#include "bytes/checksum.hpp"
+#include "core/tree/tree_parts.hpp"
+#include "core/geometry/update_arguments.hpp"
 
 #include <array>
 #include <cmath>

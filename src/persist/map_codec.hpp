@@ -3,7 +3,7 @@
 // motion, the tree's nodes and points, and free-space clearing's state while it is on.
 
 #include "clearing/clearing.hpp"
-#include "core/tree.hpp"
+#include "core/tree/tree.hpp"
 
 #include <memory>
 #include <string>
@@ -25,7 +25,7 @@ struct DecodedMap {
   std::unique_ptr<Tree> tree;
   std::unique_ptr<ClearingState> clearing;  ///< null while clearing is off
 };
-/// The map in `bytes`. Throws ByteError (persist/byte_stream.hpp) naming the first byte that does
+/// The map in `bytes`. Throws ByteError (bytes/byte_stream.hpp) naming the first byte that does
 /// not make a map: a wrong magic or version, a checksum that does not match, a truncated
 /// section, a value out of range, a tree whose parts do not fit together.
 DecodedMap decode_map(std::string_view bytes);

@@ -1,7 +1,7 @@
 #include "query/distances.hpp"
 
-#include "core/set_flags.hpp"
-#include "core/vector_clones.hpp"
+#include "core/geometry/set_flags.hpp"
+#include "core/geometry/vector_clones.hpp"
 
 #include <algorithm>
 #include <cassert>

@@ -1,5 +1,5 @@
 #pragma once
-// Squared distances from a query to a leaf's points, in vector code (core/vector_clones.hpp): the
+// Squared distances from a query to a leaf's points, in vector code (core/geometry/vector_clones.hpp): the
 // KNN search's inner loop. The same bits as (dx^2 + dy^2) + dz^2 one point at a time.
 
 #include <array>

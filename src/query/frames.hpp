@@ -2,7 +2,7 @@
 // Query-side helpers: moving query points into the anchor frame and results back out, and the
 // argument checks every query shares.
 
-#include "core/tree.hpp"
+#include "core/tree/tree.hpp"
 
 #include <eco/types.hpp>
 

@@ -2,7 +2,7 @@
 // The queries over a tree, as free functions: EgoOctree forwards to them, and the benchmark's
 // tree-based baselines (src/baselines) answer with the very same code.
 
-#include "core/tree.hpp"
+#include "core/tree/tree.hpp"
 
 #include <eco/types.hpp>
 

@@ -9,7 +9,7 @@
 // made unique within the leaf and the map needs no global sort.
 // Any other resolution visits every point and sorts.
 
-#include "core/subcells.hpp"
+#include "core/geometry/subcells.hpp"
 #include "query/frames.hpp"
 #include "query/queries.hpp"
 
@@ -103,7 +103,7 @@ class LatticeVoxels {
   }
 
   /// A leaf one or two levels above the voxels: its voxels are its subcells, kept with it
-  /// (core/subcells.hpp; their walls are the voxels' down to the lattice's finest cells).
+  /// (core/geometry/subcells.hpp; their walls are the voxels' down to the lattice's finest cells).
   void collect_subcells(const Node& n, const Cell& cell) {
     const VoxelKey first = voxel_of(cell);
     if (depth_ - cell.depth == 2) {

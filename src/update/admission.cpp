@@ -1,6 +1,6 @@
 #include "update/admission.hpp"
 
-#include "core/vector_clones.hpp"
+#include "core/geometry/vector_clones.hpp"
 
 #include <cmath>
 #include <limits>

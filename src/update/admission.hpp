@@ -1,10 +1,11 @@
 #pragma once
-// Which scan points an update takes in (DESIGN.md §1): finite, inside Box(p_t) and the region
-// (Config::region), and — under ShiftInOnly — outside the previous box. Shared by ECO's shift-in stage and the baselines, so
-// every method of the benchmark takes in the same points.
+// Which scan points an update takes in (the contract, include/eco/ego_octree.hpp): finite, inside
+// Box(p_t) and the region (Config::region), and — under ShiftInOnly — outside the previous box.
+// Shared by ECO's shift-in stage and the baselines, so every method of the benchmark takes in the
+// same points.
 
-#include "core/geometry.hpp"
-#include "core/motion.hpp"
+#include "core/geometry/geometry.hpp"
+#include "core/geometry/motion.hpp"
 
 #include <eco/config.hpp>
 #include <eco/types.hpp>
@@ -51,8 +52,8 @@ struct AdmittedGroup {
 };
 
 /// Judges scan points [begin, begin + n) (n <= kAdmitGroup) in vector code
-/// (core/vector_clones.hpp). A point's stored coordinates are exactly the scalar formula's:
-/// world = R·s + t in double, summed as Eigen sums a 3×3 product (tests/core/admission_test.cpp),
+/// (core/geometry/vector_clones.hpp). A point's stored coordinates are exactly the scalar formula's:
+/// world = R·s + t in double, summed as Eigen sums a 3×3 product (tests/update/admission_test.cpp),
 /// minus the anchor, rounded once to float; it is admitted when they lie in the box and not in
 /// the previous one.
 void admit_group(const AdmissionFrame& frame, ScanView scan, std::size_t begin, std::size_t n, AdmittedGroup& out);

@@ -1,4 +1,4 @@
-// Stage 1: the frame's motion (core/motion.hpp) entered into the tree, and what an origin move
+// Stage 1: the frame's motion (core/geometry/motion.hpp) entered into the tree, and what an origin move
 // re-expresses.
 
 #include "update/stages.hpp"

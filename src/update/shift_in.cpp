@@ -1,6 +1,6 @@
 #include "clearing/clearing.hpp"
-#include "core/batch_insertion.hpp"
-#include "core/density_gate.hpp"
+#include "core/tree/batch_insertion.hpp"
+#include "core/density/density_gate.hpp"
 #include "update/admission.hpp"
 #include "update/stages.hpp"
 

@@ -1,5 +1,5 @@
 #include "update/stages.hpp"
-#include "core/subtree_filter.hpp"
+#include "core/tree/subtree_filter.hpp"
 
 namespace eco::detail {
 namespace {

@@ -5,8 +5,8 @@
 // tree to put back (a precision-origin move, a rebuilt subtree) are handed on, not parked.
 
 #include "clearing/clearing.hpp"
-#include "core/motion.hpp"
-#include "core/tree.hpp"
+#include "core/geometry/motion.hpp"
+#include "core/tree/tree.hpp"
 
 #include <eco/types.hpp>
 
@@ -79,11 +79,5 @@ UpdateStats run_update(Tree& tree, ClearingState* clearing, const Eigen::Isometr
 /// configuration — throwing std::invalid_argument, the tree unchanged, when they are refused —
 /// and returns the frame's statistics, counting the scan.
 UpdateStats begin_update(const Config& config, const Eigen::Isometry3d& world_T_sensor, ScanView scan);
-
-/// Throws std::invalid_argument naming the value unless `pose` is finite and rigid, `scan` is
-/// readable and the density cap's grid can index the points around `pose` (Config's). `name`
-/// names the pose argument in the message.
-void check_update_arguments(const Eigen::Isometry3d& pose, const char* name, const ScanView& scan,
-                            const Config& config);
 
 }  // namespace eco::detail

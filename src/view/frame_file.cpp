@@ -2,9 +2,8 @@
 
 #include "view/frame_file.hpp"
 
-#include "odometry/voxel_downsample.hpp"
-#include "persist/byte_stream.hpp"
-#include "persist/checksum.hpp"
+#include "bytes/byte_stream.hpp"
+#include "bytes/checksum.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -36,7 +35,7 @@ std::string shortest(double value) {
 
 /// The sensor's voxel: voxel keys are stored as int16 offsets from it.
 VoxelKey sensor_voxel(const Eigen::Isometry3d& pose, double voxel_size) {
-  return odometry::voxel_of(pose.translation(), voxel_size);
+  return voxel_of(pose.translation(), voxel_size);
 }
 
 std::int16_t voxel_offset(std::int64_t key, std::int64_t centre) {

@@ -3,7 +3,6 @@
 
 #include "view/recorder.hpp"
 
-#include "odometry/voxel_downsample.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -96,7 +95,7 @@ FrameChanges Recorder::record(std::uint32_t frame, const Eigen::Isometry3d& worl
 
 std::vector<VoxelKey> occupied_voxels(const std::vector<HeldPoint>& held, double voxel_size) {
   std::unordered_set<VoxelKey> voxels;
-  for (const HeldPoint& p : held) voxels.insert(odometry::voxel_of(p.point, voxel_size));
+  for (const HeldPoint& p : held) voxels.insert(voxel_of(p.point, voxel_size));
   return {voxels.begin(), voxels.end()};
 }
 

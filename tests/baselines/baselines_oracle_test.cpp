@@ -8,7 +8,7 @@
 #include "support/rejected.hpp"
 #include "support/streams.hpp"
 
-#include <eco/baselines/method.hpp>
+#include "baselines/method.hpp"
 
 #include <tuple>
 

@@ -4,10 +4,10 @@
 // from it; points outside the cell, and NaN, are never sure. The subcells read off the codes are
 // the ones the quarter walls give.
 
-#include "core/cell_codes.hpp"
-#include "core/geometry.hpp"
-#include "core/point_store.hpp"
-#include "core/subcells.hpp"
+#include "core/geometry/cell_codes.hpp"
+#include "core/geometry/geometry.hpp"
+#include "core/storage/point_store.hpp"
+#include "core/geometry/subcells.hpp"
 
 #include <gtest/gtest.h>
 

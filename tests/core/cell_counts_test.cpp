@@ -3,7 +3,7 @@
 // width of count (the cap's bits) and past it (the side table); and the group form of the capped
 // add, key after key as the map counts them.
 
-#include "core/cell_counts.hpp"
+#include "core/density/cell_counts.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 // The cells' keys guessed in vector code are WorldGrid's, on walls and off them, near the world's
 // origin and far from it.
 
-#include "core/density_gate.hpp"
+#include "core/density/density_gate.hpp"
 
 #include <gtest/gtest.h>
 

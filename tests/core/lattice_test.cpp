@@ -2,7 +2,7 @@
 // random points and for points exactly on walls (a wall belongs to the cell above it); children,
 // enclosure and octant_of agree with those descents; sides halve per level.
 
-#include "core/geometry.hpp"
+#include "core/geometry/geometry.hpp"
 
 #include <gtest/gtest.h>
 

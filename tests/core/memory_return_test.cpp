@@ -1,6 +1,6 @@
 // A map that shrinks gives its memory back: after dense frames, the sensor drives on into sparse
 // ones, most held points leave, and the update's last step moves the leaves' blocks to the pools'
-// front, a megabyte an update (src/core/tree.hpp, give_back_memory). Every frame the held set,
+// front, a megabyte an update (src/core/tree/tree.hpp, give_back_memory). Every frame the held set,
 // every query and every point's attributes equal the brute force's; the bytes follow the map down.
 
 #include "support/compare.hpp"

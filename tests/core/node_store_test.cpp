@@ -2,7 +2,7 @@
 // of node ids and child blocks (the pools stop growing once they hold the high-water mark),
 // against a set of the ids that should be live.
 
-#include "core/node_store.hpp"
+#include "core/storage/node_store.hpp"
 
 #include <gtest/gtest.h>
 

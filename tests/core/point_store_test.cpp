@@ -3,7 +3,7 @@
 // optional columns (stamps, ids, intensities, times); released blocks are reused before the pools
 // grow, and compaction moves blocks to the pools' front and gives the emptied pages back.
 
-#include "core/point_store.hpp"
+#include "core/storage/point_store.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-// Subcells (src/core/subcells.hpp): a leaf's occupied quarter-cells as one word, against the
+// Subcells (src/core/geometry/subcells.hpp): a leaf's occupied quarter-cells as one word, against the
 // lattice's own descent two levels down (one level for a cell two units wide), for points on the
 // walls, the float just below them and between them, and for runs of points.
 
-#include "core/subcells.hpp"
+#include "core/geometry/subcells.hpp"
 #include "support/float_walls.hpp"
 
 #include <gtest/gtest.h>

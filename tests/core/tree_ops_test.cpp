@@ -1,10 +1,10 @@
-// The tree's structural operations on their own (src/core/tree.hpp), beyond what the update's
+// The tree's structural operations on their own (src/core/tree/tree.hpp), beyond what the update's
 // oracle tests reach through the stages: taking every point out, detaching and re-attaching the
 // depth-k subtrees (Quantised re-linking), and growing the root (i-Octree). After each, the held
 // points are exactly those inserted and check_tree() finds every invariant intact.
 
-#include "core/invariants.hpp"
-#include "core/tree.hpp"
+#include "core/tree/invariants.hpp"
+#include "core/tree/tree.hpp"
 #include "query/frames.hpp"
 #include "update/stages.hpp"
 

@@ -1,11 +1,11 @@
-// The update's memory between updates (src/core/working_buffers.hpp, src/core/mapped_memory.hpp):
+// The update's memory between updates (src/core/storage/working_buffers.hpp, src/core/storage/mapped_memory.hpp):
 // the working buffers stay at what recent updates used, so that no frame pays for fresh pages,
 // and shrink once a whole window of updates needed far less; and in steady state the update takes
 // nothing of a page or more from the process's heap, where it would split the free space its
 // caller reuses each frame.
 
-#include "core/mapped_memory.hpp"
-#include "core/tree.hpp"
+#include "core/storage/mapped_memory.hpp"
+#include "core/tree/tree.hpp"
 #include "update/stages.hpp"
 
 #include <gtest/gtest.h>

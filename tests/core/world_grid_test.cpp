@@ -3,7 +3,7 @@
 // and exactly on walls (the first float at or above a wall and the float before it), for sizes
 // that are not binary fractions and origins far from the world's.
 
-#include "core/geometry.hpp"
+#include "core/geometry/geometry.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // a tree it loads answers queries and takes another frame (or refuses the frame by name). Inputs whose first byte is even get
 // their checksum set right first, so that the fuzzer reaches the sections behind it.
 
-#include "persist/byte_stream.hpp"
+#include "bytes/byte_stream.hpp"
 #include "persist/map_codec.hpp"
 
 #include <eco/ego_octree.hpp>

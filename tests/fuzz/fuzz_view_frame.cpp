@@ -3,7 +3,7 @@
 // written again to the same frame. Inputs whose first byte is even get their checksum set right
 // first, so that the fuzzer reaches the parts behind it.
 
-#include "persist/checksum.hpp"
+#include "bytes/checksum.hpp"
 #include "view/display_frame.hpp"
 #include "view/frame_file.hpp"
 

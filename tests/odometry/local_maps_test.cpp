@@ -3,7 +3,7 @@
 // approximation, and exactly wherever the nearest point lies within a voxel's side); the exact
 // maps hold the same points as ECO, eco_ball points within its ball only.
 
-#include <eco/odometry/baseline_maps.hpp>
+#include "odometry/baseline_maps.hpp"
 #include <eco/sim/simulator.hpp>
 
 #include "odometry/voxel_downsample.hpp"

@@ -1,8 +1,8 @@
 #pragma once
-// A brute-force copy of what an EgoOctree must hold, written from the contract (DESIGN.md §1)
-// alone: a flat list of points, filtered and searched by exhaustive loops. It stores points the
-// way the contract says they are stored (float offsets from the precision origin) so that every
-// comparison can be exact.
+// A brute-force copy of what an EgoOctree must hold, written from the contract
+// (include/eco/ego_octree.hpp) alone: a flat list of points, filtered and searched by exhaustive
+// loops. It stores points the way the contract says they are stored (float offsets from the
+// precision origin) so that every comparison can be exact.
 
 #include <eco/config.hpp>
 #include <eco/types.hpp>

@@ -5,26 +5,22 @@
 // poses score low. Leave the road out (min_z = -1.3 for a sensor 1.73 m up): its range rings
 // look alike from everywhere, so they match even with no motion at all.
 
+#include <eco/types.hpp>
+
 #include <Eigen/Geometry>
 
 #include <cmath>
 #include <limits>
 #include <set>
-#include <tuple>
 #include <vector>
 
 namespace eco::test {
-
-inline std::tuple<long, long, long> voxel_of(const Eigen::Vector3d& p, double voxel) {
-  return {std::lround(std::floor(p.x() / voxel)), std::lround(std::floor(p.y() / voxel)),
-          std::lround(std::floor(p.z() / voxel))};
-}
 
 inline double voxel_overlap(const std::vector<Eigen::Vector3f>& a, const Eigen::Isometry3d& world_T_a,
                             const std::vector<Eigen::Vector3f>& b, const Eigen::Isometry3d& world_T_b,
                             double min_z = -1e9, double voxel = 0.2, double max_range = 30.0) {
   const auto counts = [&](const Eigen::Vector3f& p) { return p.norm() < max_range && p.z() > min_z; };
-  std::set<std::tuple<long, long, long>> occupied;
+  std::set<VoxelKey> occupied;
   for (const auto& p : a) {
     if (counts(p)) occupied.insert(voxel_of(world_T_a * p.cast<double>(), voxel));
   }

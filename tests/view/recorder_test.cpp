@@ -49,7 +49,7 @@ TEST(Recorder, FindsWhatTheUpdateInsertedDroppedAndCleared) {
     ScanView scan(frame.cloud.points);
     scan.ids = ids.data();
     const UpdateStats& u = tree.update(frame.world_T_lidar, scan);
-    figures.push_back({u.scan_points, u.inserted, u.pruned, u.cleared, tree.size(), 1.5});
+    figures.push_back({u.scan_points, u.inserted, u.pruned, u.cleared, tree.size(), 1.5, {}});
     const FrameChanges found = recorder.record(t, tree.pose(), tree.points_with_attributes(), tree.voxel_keys(0.5),
                                                figures.back());
     ASSERT_EQ(found.inserted, u.inserted) << "frame " << t;
@@ -102,10 +102,10 @@ TEST(Recorder, CountsItselfForAMapThatDoesNot) {
   const Eigen::Isometry3d at0 = Eigen::Isometry3d::Identity();
   const Eigen::Isometry3d at5(Eigen::Translation3d(5, 0, 0));
   const std::vector<HeldPoint> first = held({{-9, 0, 0}, {1, 1, 1}, {1, 1, 1}, {2, 0, 0}});
-  recorder.record(0, at0, first, occupied_voxels(first, 1.0), {100, 0, 0, 0, 4, 0.5}, Eigen::Vector3d(0, 0, 0.1));
+  recorder.record(0, at0, first, occupied_voxels(first, 1.0), {100, 0, 0, 0, 4, 0.5, {}}, Eigen::Vector3d(0, 0, 0.1));
   // (-9, 0, 0) leaves the box around x = 5; one of the twin points and (2, 0, 0) go inside it
   const std::vector<HeldPoint> second = held({{1, 1, 1}, {7, 0, 0}});
-  const FrameChanges c = recorder.record(1, at5, second, occupied_voxels(second, 1.0), {100, 0, 0, 0, 2, 0.5},
+  const FrameChanges c = recorder.record(1, at5, second, occupied_voxels(second, 1.0), {100, 0, 0, 0, 2, 0.5, {}},
                                          Eigen::Vector3d(5, 0, 0.1));
   EXPECT_EQ(c.inserted, 1u);
   EXPECT_EQ(c.dropped, 1u);

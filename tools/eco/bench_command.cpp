@@ -12,7 +12,7 @@
 #include "bench/report.hpp"
 #include "bench/runner.hpp"
 
-#include <eco/baselines/method.hpp>
+#include "baselines/method.hpp"
 
 #include <cstdio>
 #include <memory>

@@ -4,12 +4,14 @@
 #include "commands.hpp"
 #include "spellings.hpp"
 
+#include <eco/process_heap.hpp>
 #include <eco/version.hpp>
 
 #include <cstdio>
 #include <exception>
 
 int main(int argc, char** argv) {
+  eco::keep_freed_heap();  // every command is a frame loop: what a frame frees, the next reuses
   std::string command_line = "eco";
   for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
   CLI::App app{"ECO: an ego-centric octree for LiDAR streams (version " + std::string(eco::kVersion) + ")", "eco"};

@@ -11,7 +11,7 @@
 #include "bench/odometry_run.hpp"
 #include "bench/sim_workload.hpp"
 
-#include <eco/odometry/baseline_maps.hpp>
+#include "odometry/baseline_maps.hpp"
 
 #include <cstdio>
 #include <filesystem>

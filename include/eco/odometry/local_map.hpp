@@ -10,7 +10,7 @@
 /// | `nanoflann`  | a nanoflann k-d tree rebuilt every frame over the same capped set of points     |
 /// | `pcl_octree` | PCL's OctreePointCloudSearch kept incrementally over the same capped set        |
 ///
-/// The last two are the benchmark's baselines, made by make_any_local_map (baseline_maps.hpp).
+/// The last two are the benchmark's baselines, made by make_any_local_map (src/odometry/baseline_maps.hpp).
 ///
 /// Every map holds the points of the ego cube of side `box_side` around the sensor, at most
 /// `max_points` per world-aligned cell of side `cell_size` (the first to arrive are kept).

@@ -1,0 +1,44 @@
+#include "core/storage/mapped_memory.hpp"
+
+#include <sys/mman.h>
+
+#include <new>
+
+namespace eco::detail {
+namespace {
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kMaps = false;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kMaps = false;
+#else
+constexpr bool kMaps = true;
+#endif
+#else
+constexpr bool kMaps = true;
+#endif
+
+bool mapped(std::size_t bytes) { return kMaps && bytes >= kMappedFrom; }
+
+}  // namespace
+
+bool allocations_are_mapped() { return kMaps; }
+
+void* allocate_bytes(std::size_t bytes) {
+  if (!mapped(bytes)) return ::operator new(bytes);
+  void* memory = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (memory == MAP_FAILED) throw std::bad_alloc();
+  return memory;
+}
+
+void release_bytes(void* memory, std::size_t bytes) noexcept {
+  if (memory == nullptr) return;
+  if (!mapped(bytes)) {
+    ::operator delete(memory);
+    return;
+  }
+  munmap(memory, bytes);
+}
+
+}  // namespace eco::detail

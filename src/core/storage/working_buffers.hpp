@@ -1,0 +1,100 @@
+#pragma once
+// The update's working arrays (insertion's batches and their groups, a split leaf's order, a
+// collapsed subtree's points), kept between updates in the tree's own mapped memory
+// (core/storage/mapped_memory.hpp): neither the update nor its caller pays for fresh pages each frame.
+//
+// They are kept at the high-water mark of the recent updates, with hysteresis: an update that
+// needs less leaves them as they are; once every update of a window of kWindow has needed under a
+// kSlack-th of what they hold (a map that shrank, or a one-off: the whole map put back after the
+// precision origin moved), they shrink to that window's peak. What they hold is bounded by the
+// largest batch a recent update put in: kInsertChunk points for a scan, the held points for a
+// map put back whole.
+
+#include "core/geometry/geometry.hpp"
+#include "core/storage/mapped_memory.hpp"
+#include "core/storage/point_store.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace eco::detail {
+
+class WorkingBuffers {
+ public:
+  static constexpr std::size_t kWindow = 4;  // updates
+  static constexpr std::size_t kSlack = 4;
+
+  /// Insertion's batch of new points (Point: StoredPoint or BarePoint), and room for as many
+  /// partitioned.
+  template <class Point>
+  MappedVector<Point>& batch() { return std::get<Typed<Point>>(by_type_).batch; }
+  template <class Point>
+  MappedVector<Point>& partitioned() { return std::get<Typed<Point>>(by_type_).partitioned; }
+  /// A batch's points' start-cell slots (then the groups' sorts' second array), their cell
+  /// codes, and where each group starts.
+  MappedVector<std::uint32_t>& slots() { return slots_; }
+  MappedVector<std::uint32_t>& codes() { return codes_; }
+  MappedVector<std::uint32_t>& group_starts() { return group_starts_; }
+  /// The subtrees detached while the root re-centres (Quantised mode), with their cells.
+  MappedVector<std::pair<std::uint32_t, Cell>>& detached() { return detached_; }
+  /// A leaf being split: its points' octants, then their order.
+  MappedVector<std::uint32_t>& split_order() { return split_order_; }
+  /// The points of a subtree being collapsed (at most a leaf's: under a page, so from the heap).
+  std::vector<StoredPoint>& collapsed() { return collapsed_; }
+
+  /// Notes that an update is over, in which the largest batch held `points` points, and shrinks
+  /// the buffers when a whole window needed under a kSlack-th of what they hold.
+  void end_update(std::size_t points) {
+    window_peak_ = std::max(window_peak_, points);
+    if (++updates_in_window_ < kWindow) return;
+    if (kSlack * window_peak_ < held_points()) {
+      std::apply([&](auto&... typed) { ((shrink(typed.batch), shrink(typed.partitioned)), ...); }, by_type_);
+      for (auto* indices : {&slots_, &codes_, &split_order_}) shrink(*indices);
+      shrink(collapsed_);
+    }
+    window_peak_ = 0;
+    updates_in_window_ = 0;
+  }
+
+  /// Bytes held.
+  [[nodiscard]] std::size_t bytes() const {
+    const std::size_t batches =
+        std::apply([](const auto&... typed) { return ((bytes_of(typed.batch) + bytes_of(typed.partitioned)) + ...); },
+                   by_type_);
+    return batches + bytes_of(slots_) + bytes_of(codes_) + bytes_of(group_starts_) + bytes_of(split_order_) +
+           bytes_of(collapsed_) + bytes_of(detached_);
+  }
+
+ private:
+  template <class Point>
+  struct Typed {
+    MappedVector<Point> batch, partitioned;
+  };
+  template <class Vector>
+  static std::size_t bytes_of(const Vector& v) { return v.capacity() * sizeof(typename Vector::value_type); }
+  /// Points the largest batch buffer has room for.
+  [[nodiscard]] std::size_t held_points() const {
+    return std::apply([](const auto&... typed) { return std::max({typed.batch.capacity()..., typed.partitioned.capacity()...}); },
+                      by_type_);
+  }
+  /// Gives `v` the window's peak as its room (its contents are working values, not kept).
+  template <class Vector>
+  void shrink(Vector& v) const {
+    if (v.capacity() <= window_peak_) return;
+    Vector().swap(v);
+    v.reserve(window_peak_);
+  }
+
+  std::tuple<Typed<StoredPoint>, Typed<BarePoint>> by_type_;
+  MappedVector<std::uint32_t> slots_, codes_, group_starts_, split_order_;
+  MappedVector<std::pair<std::uint32_t, Cell>> detached_;
+  std::vector<StoredPoint> collapsed_;
+  std::size_t window_peak_ = 0;
+  std::size_t updates_in_window_ = 0;
+};
+
+}  // namespace eco::detail

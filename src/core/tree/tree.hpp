@@ -1,0 +1,172 @@
+#pragma once
+// The state behind an EgoOctree and the structural operations the update stages compose. Their
+// parts live beside it: batch insertion (core/tree/batch_insertion.hpp), the filter that takes points
+// out (core/tree/subtree_filter.hpp), and the repair both leave to refit (core/tree/tree_repair.hpp).
+
+#include "core/tree/age_limit.hpp"
+#include "core/density/cell_counts.hpp"
+#include "core/geometry/geometry.hpp"
+#include "core/geometry/motion.hpp"
+#include "core/storage/node_store.hpp"
+#include "core/storage/point_store.hpp"
+#include "core/storage/working_buffers.hpp"
+
+#include <eco/config.hpp>
+#include <eco/types.hpp>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace eco::detail {
+
+struct TreeParts;
+
+/// The depth above which every node is inner: k in Quantised mode (the lattice-fixed levels), else 0.
+inline int min_leaf_depth(const Config& config) {
+  return config.recentring == Recentring::Quantised ? int(config.quantum_levels) : 0;
+}
+
+/// A tree's memory (Tree::memory()).
+struct TreeMemory {
+  std::size_t bytes = 0;           ///< nodes, leaf blocks, start table, working buffers, density counts
+  std::size_t buffer_bytes = 0;    ///< of those, the working buffers'
+  std::size_t snapshot_bytes = 0;  ///< beside them, what only snapshots hold (core/storage/shared_pages.hpp)
+};
+
+/// The storage behind an EgoOctree (nodes, leaf blocks, lattice, density counts). Queries read it
+/// through the const accessors; stages change it through the operations, each of which leaves
+/// the tree whole, and count what they do in the UpdateStats they are handed.
+class Tree {
+ public:
+  explicit Tree(const Config& config);
+  /// The tree `parts` describe (core/tree/tree_parts.hpp) under `config`. Throws std::invalid_argument
+  /// naming the first part that does not fit.
+  Tree(const Config& config, const TreeParts& parts);
+  Tree(const Tree&) = delete;
+  Tree& operator=(const Tree&) = delete;
+  ~Tree();  // a snapshot's puts its nodes on the shelf for the next snapshot's copy
+  /// This tree as it is now, read-only from any thread while this one changes: it shares every
+  /// page of points and copies the nodes; this tree copies a page when it next writes it.
+  [[nodiscard]] std::unique_ptr<const Tree> share();
+
+  // --- reading --------------------------------------------------------------------------------
+  [[nodiscard]] const Config& config() const { return cfg_; }
+  [[nodiscard]] const NodeStore& nodes() const { return nodes_; }
+  [[nodiscard]] const PointStore& points() const { return points_; }
+  [[nodiscard]] std::uint32_t root() const { return root_; }
+  [[nodiscard]] const Cell& root_cell() const { return root_cell_; }
+  [[nodiscard]] const Lattice& lattice() const { return lattice_; }
+  [[nodiscard]] std::size_t size() const { return root_ == kNone ? 0 : nodes_[root_].count; }
+  [[nodiscard]] TreeMemory memory() const;
+  [[nodiscard]] const Motion& motion() const { return motion_; }  ///< the current frame's
+  [[nodiscard]] const AgeLimit& age_limit() const { return age_; }  ///< the current frame's
+
+  // --- the frame ------------------------------------------------------------------------------
+  /// Enters a new frame: its motion, the density grid from its anchor, its age limit, and the
+  /// held times re-expressed in place when the clock's origin moved.
+  void set_motion(const Motion& m);
+  /// The region the frame ends with, once the budget narrowed it (Config::region.max_points).
+  void narrow_region(const EgoRegion& region, const RegionSize& size) {
+    motion_.region = region;
+    motion_.region_size = size;
+    motion_.region_moved = true;
+  }
+  /// Counts the density cells of `held` anew (after the precision origin moved, their keys did).
+  void recount_density(const std::vector<StoredPoint>& held);
+  /// Gives back what a map that shrank holds in free blocks (a bounded share an update), then the
+  /// pages this update replaced by copies and the spare ones beyond what it copied.
+  void give_back_memory(std::size_t floor = kMemoryFloor);
+
+  // --- insertion ------------------------------------------------------------------------------
+  /// Inserts every point of `batch` (each in the root cell), reordering it.
+  void insert_batch(std::span<StoredPoint> batch) { insert_points(batch); }
+  void insert_batch(std::span<BarePoint> batch) { insert_points(batch); }
+  /// Inserts the points `collect(push)` hands to push(const Point&), in batches of at most
+  /// kInsertChunk through the working buffers, each shown to `look(std::span<const Point>)`
+  /// first. Returns how many (core/tree/batch_insertion.hpp).
+  template <class Point, class Collect, class Look>
+  std::size_t insert_collected(Collect&& collect, Look&& look);
+  /// Large enough that a batch shares the walk to most start nodes, small enough to stay near the cache.
+  static constexpr std::size_t kInsertChunk = std::size_t(1) << 14;
+  /// The density cap's verdicts on new points[0, n) (n <= kDensityGroup): passed[i] = 1 when
+  /// point i's cell holds fewer than the cap, and it is counted there. Returns how many it refused.
+  std::size_t judge_density(const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed);
+  /// Fills the start table (where insertion starts) from the current tree at `depth`.
+  void rebuild_start_table(int depth);
+
+  // --- removal --------------------------------------------------------------------------------
+  /// Keeps the points of leaf `id` for which keep(const StoredPoint&) is true, and refits it; the
+  /// others leave the density counts (core/tree/subtree_filter.hpp).
+  template <class Keep>
+  void retain(std::uint32_t id, Keep&& keep);
+  /// Takes a point handed on between stages, outside the tree, out of the density counts.
+  void forget(const StoredPoint& s) {
+    if (cfg_.density_cap.enabled()) density_.remove(CellCounts::key(density_grid_.index(s.p)));
+  }
+  /// Takes points out in place as `filter` judges each subtree and leaf (core/tree/subtree_filter.hpp).
+  template <class Filter>
+  void filter(Filter& filter, UpdateStats& stats);
+  /// Appends every held point to `out`; the tree is left without a root, the density counts stay.
+  void take_points(std::vector<StoredPoint>& out);
+
+  // --- the root -------------------------------------------------------------------------------
+  /// Makes an empty root for `cell` under `lattice` (inner in Quantised mode, else a leaf),
+  /// releasing whatever the tree held.
+  void place_root(const Cell& cell, const Lattice& lattice);
+  /// Exact re-centring: moves the lattice's walls, keeps every subtree whose bounds still fit its
+  /// moved cell and dissolves the others into `displaced`.
+  void move_lattice(const Lattice& lattice, std::vector<StoredPoint>& displaced, UpdateStats& stats);
+  /// Quantised re-centring: the root moves to `new_root`; the subtrees at `depth` are re-linked
+  /// under new top levels, and one `new_root` does not enclose is dissolved into `displaced`.
+  void relink_top(const Cell& new_root, int depth, std::vector<StoredPoint>& displaced, UpdateStats& stats);
+  /// Doubles the root's cell: the old root becomes child `octant` (i-Octree's growth).
+  void grow_root(int octant);
+
+ private:
+  friend class BatchInsertion;
+  friend class TreeRepair;
+  struct Sharing {};
+  Tree(Tree& live, Sharing);
+  static constexpr std::size_t kFreeShare = 8;
+  static constexpr std::size_t kMemoryFloor = std::size_t{1} << 14;  // below, not worth it (four pages)
+  static constexpr std::size_t kCompactionBudget = std::size_t{1} << 20;
+  void compact_points(std::size_t floor);
+  void shift_times(double shift);  // against a time origin moved by -shift [s]
+  void make_root();
+  std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
+  void note_created(std::uint32_t id, const Cell& cell);
+  [[nodiscard]] std::int64_t start_slot(const Cell& cell) const;
+  template <class Point>
+  void insert_points(std::span<Point> batch);
+
+  /// Nodes at one depth, indexed by their cell: where insertion starts instead of the root.
+  struct StartTable {
+    int depth = 0;
+    std::int64_t per_axis = 1;
+    std::vector<std::uint32_t> slots;
+  };
+
+  Config cfg_;
+  std::shared_ptr<PageLedger> ledger_;  // the pages this tree and its snapshots hold
+  NodeStore nodes_;
+  PointStore points_;
+  std::uint32_t root_ = kNone;
+  Cell root_cell_;
+  Lattice lattice_;
+  int min_leaf_depth_ = 0;       // min_leaf_depth(cfg_)
+  bool keeps_subcells_ = false;  // Quantised mode: every leaf's Node::subcells kept
+  Motion motion_;
+  AgeLimit age_;  // of motion_
+  StartTable start_;
+  CellCounts density_;  // points per density-cap cell, kept while the cap is on
+  WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
+  WorkingBuffers buffers_;
+  std::shared_ptr<NodeShelf> shelf_ = std::make_shared<NodeShelf>(ledger_);  // shared with snapshots
+  LedgerCharge own_bytes_;  // a snapshot's: its copy of the nodes
+  bool snapshot_ = false;
+};
+
+}  // namespace eco::detail
