@@ -2,7 +2,7 @@
 // Batch insertion (Tree::insert_batch, insert_collected): a batch grouped by start cell, each group
 // partitioned by octant top-down from its start node (core/tree/insertion.cpp) or, when large, sorted by
 // the cells it falls in a few levels down (core/tree/sorted_insert.cpp); full leaves split on the way.
-// It works on a tree's storage as the tree's friend, for one batch at a time.
+// It works on a tree's storage (core/tree/tree_storage.hpp), one batch at a time.
 
 #include "core/tree/tree.hpp"
 
@@ -17,7 +17,7 @@ namespace eco::detail {
 
 class BatchInsertion {
  public:
-  explicit BatchInsertion(Tree& tree) : t_(tree) {}
+  explicit BatchInsertion(TreeStorage& storage) : t_(storage) {}
   /// Inserts every point of `batch` (each in the root cell), reordering it.
   template <class Point>
   void insert(std::span<Point> batch);
@@ -61,15 +61,15 @@ class BatchInsertion {
   /// Prefetches the start node of the first non-empty group at or after `from` (groups of
   /// insert_batch, `first` their bounds), so its miss overlaps the work on the group before.
   void prefetch_start_node(std::size_t from, std::span<const std::uint32_t> first) const;
-  /// The start-depth cell whose slot is `slot` (Tree::start_slot's inverse).
+  /// The start-depth cell whose slot is `slot` (TreeStorage::start_slot's inverse).
   [[nodiscard]] Cell start_cell(std::uint32_t slot) const;
 
-  Tree& t_;
+  TreeStorage& t_;
 };
 
 template <class Point, class Collect, class Look>
 std::size_t Tree::insert_collected(Collect&& collect, Look&& look) {
-  MappedVector<Point>& batch = buffers_.batch<Point>();
+  MappedVector<Point>& batch = s_.buffers.batch<Point>();
   std::size_t n = 0;
   const auto insert = [&] {
     n += batch.size();
@@ -83,7 +83,7 @@ std::size_t Tree::insert_collected(Collect&& collect, Look&& look) {
     if (batch.size() == kInsertChunk) insert();
   });
   insert();
-  buffers_.end_update(std::min(n, kInsertChunk));
+  s_.buffers.end_update(std::min(n, kInsertChunk));
   return n;
 }
 

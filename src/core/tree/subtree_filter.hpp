@@ -55,22 +55,22 @@ Filtered filter_below(const Tree& tree, TreeRepair& repair, std::uint32_t id, Fi
 
 template <class Filter>
 void Tree::filter(Filter& filter, UpdateStats& stats) {
-  if (root_ == kNone) return;
-  TreeRepair repair(*this);
-  if (filtering::filter_below(*this, repair, root_, filter, stats) == filtering::Filtered::Gone) {
-    place_root(root_cell_, lattice_);  // everything left
+  if (s_.root == kNone) return;
+  TreeRepair repair(s_);
+  if (filtering::filter_below(*this, repair, s_.root, filter, stats) == filtering::Filtered::Gone) {
+    place_root(s_.root_cell, s_.lattice);  // everything left
   }
 }
 
 template <class Keep>
 void Tree::retain(std::uint32_t id, Keep&& keep) {
-  Node& n = nodes_.edit(id);
-  n.count = points_.retain(n.link, n.count, [&](const StoredPoint& s) {
+  Node& n = s_.nodes.edit(id);
+  n.count = s_.points.retain(n.link, n.count, [&](const StoredPoint& s) {
     if (keep(s)) return true;
     forget(s);
     return false;
   });
-  TreeRepair(*this).refit(id);
+  TreeRepair(s_).refit(id);
 }
 
 }  // namespace eco::detail

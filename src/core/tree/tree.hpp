@@ -3,13 +3,8 @@
 // parts live beside it: batch insertion (core/tree/batch_insertion.hpp), the filter that takes points
 // out (core/tree/subtree_filter.hpp), and the repair both leave to refit (core/tree/tree_repair.hpp).
 
-#include "core/tree/age_limit.hpp"
-#include "core/density/cell_counts.hpp"
-#include "core/geometry/geometry.hpp"
 #include "core/geometry/motion.hpp"
-#include "core/storage/node_store.hpp"
-#include "core/storage/point_store.hpp"
-#include "core/storage/working_buffers.hpp"
+#include "core/tree/tree_storage.hpp"
 
 #include <eco/config.hpp>
 #include <eco/types.hpp>
@@ -24,11 +19,6 @@ namespace eco::detail {
 
 struct TreeParts;
 
-/// The depth above which every node is inner: k in Quantised mode (the lattice-fixed levels), else 0.
-inline int min_leaf_depth(const Config& config) {
-  return config.recentring == Recentring::Quantised ? int(config.quantum_levels) : 0;
-}
-
 /// A tree's memory (Tree::memory()).
 struct TreeMemory {
   std::size_t bytes = 0;           ///< nodes, leaf blocks, start table, working buffers, density counts
@@ -36,9 +26,9 @@ struct TreeMemory {
   std::size_t snapshot_bytes = 0;  ///< beside them, what only snapshots hold (core/storage/shared_pages.hpp)
 };
 
-/// The storage behind an EgoOctree (nodes, leaf blocks, lattice, density counts). Queries read it
-/// through the const accessors; stages change it through the operations, each of which leaves
-/// the tree whole, and count what they do in the UpdateStats they are handed.
+/// The tree behind an EgoOctree: its storage (core/tree/tree_storage.hpp) and the frame it is in.
+/// Queries read it through the const accessors; stages change it through the operations, each of
+/// which leaves the tree whole, and count what they do in the UpdateStats they are handed.
 class Tree {
  public:
   explicit Tree(const Config& config);
@@ -53,16 +43,16 @@ class Tree {
   [[nodiscard]] std::unique_ptr<const Tree> share();
 
   // --- reading --------------------------------------------------------------------------------
-  [[nodiscard]] const Config& config() const { return cfg_; }
-  [[nodiscard]] const NodeStore& nodes() const { return nodes_; }
-  [[nodiscard]] const PointStore& points() const { return points_; }
-  [[nodiscard]] std::uint32_t root() const { return root_; }
-  [[nodiscard]] const Cell& root_cell() const { return root_cell_; }
-  [[nodiscard]] const Lattice& lattice() const { return lattice_; }
-  [[nodiscard]] std::size_t size() const { return root_ == kNone ? 0 : nodes_[root_].count; }
+  [[nodiscard]] const Config& config() const { return s_.config; }
+  [[nodiscard]] const NodeStore& nodes() const { return s_.nodes; }
+  [[nodiscard]] const PointStore& points() const { return s_.points; }
+  [[nodiscard]] std::uint32_t root() const { return s_.root; }
+  [[nodiscard]] const Cell& root_cell() const { return s_.root_cell; }
+  [[nodiscard]] const Lattice& lattice() const { return s_.lattice; }
+  [[nodiscard]] std::size_t size() const { return s_.root == kNone ? 0 : s_.nodes[s_.root].count; }
   [[nodiscard]] TreeMemory memory() const;
   [[nodiscard]] const Motion& motion() const { return motion_; }  ///< the current frame's
-  [[nodiscard]] const AgeLimit& age_limit() const { return age_; }  ///< the current frame's
+  [[nodiscard]] const AgeLimit& age_limit() const { return s_.age; }  ///< the current frame's
 
   // --- the frame ------------------------------------------------------------------------------
   /// Enters a new frame: its motion, the density grid from its anchor, its age limit, and the
@@ -104,7 +94,7 @@ class Tree {
   void retain(std::uint32_t id, Keep&& keep);
   /// Takes a point handed on between stages, outside the tree, out of the density counts.
   void forget(const StoredPoint& s) {
-    if (cfg_.density_cap.enabled()) density_.remove(CellCounts::key(density_grid_.index(s.p)));
+    if (s_.config.density_cap.enabled()) s_.density.remove(CellCounts::key(s_.density_grid.index(s.p)));
   }
   /// Takes points out in place as `filter` judges each subtree and leaf (core/tree/subtree_filter.hpp).
   template <class Filter>
@@ -126,8 +116,6 @@ class Tree {
   void grow_root(int octant);
 
  private:
-  friend class BatchInsertion;
-  friend class TreeRepair;
   struct Sharing {};
   Tree(Tree& live, Sharing);
   static constexpr std::size_t kFreeShare = 8;
@@ -136,35 +124,12 @@ class Tree {
   void compact_points(std::size_t floor);
   void shift_times(double shift);  // against a time origin moved by -shift [s]
   void make_root();
-  std::uint32_t child_or_new(std::uint32_t id, const Cell& cell, int octant);
-  void note_created(std::uint32_t id, const Cell& cell);
-  [[nodiscard]] std::int64_t start_slot(const Cell& cell) const;
   template <class Point>
   void insert_points(std::span<Point> batch);
 
-  /// Nodes at one depth, indexed by their cell: where insertion starts instead of the root.
-  struct StartTable {
-    int depth = 0;
-    std::int64_t per_axis = 1;
-    std::vector<std::uint32_t> slots;
-  };
-
-  Config cfg_;
-  std::shared_ptr<PageLedger> ledger_;  // the pages this tree and its snapshots hold
-  NodeStore nodes_;
-  PointStore points_;
-  std::uint32_t root_ = kNone;
-  Cell root_cell_;
-  Lattice lattice_;
-  int min_leaf_depth_ = 0;       // min_leaf_depth(cfg_)
-  bool keeps_subcells_ = false;  // Quantised mode: every leaf's Node::subcells kept
+  TreeStorage s_;
   Motion motion_;
-  AgeLimit age_;  // of motion_
-  StartTable start_;
-  CellCounts density_;  // points per density-cap cell, kept while the cap is on
-  WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
-  WorkingBuffers buffers_;
-  std::shared_ptr<NodeShelf> shelf_ = std::make_shared<NodeShelf>(ledger_);  // shared with snapshots
+  std::shared_ptr<NodeShelf> shelf_ = std::make_shared<NodeShelf>(s_.ledger);  // shared with snapshots
   LedgerCharge own_bytes_;  // a snapshot's: its copy of the nodes
   bool snapshot_ = false;
 };

@@ -68,7 +68,7 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
   };
   sized(c.y.size(), true, "y");
   sized(c.z.size(), true, "z");
-  const Columns kept = points_.columns();
+  const Columns kept = s_.points.columns();
   sized(c.stamps.size(), kept.stamps, "stamps");
   sized(c.ids.size(), kept.ids, "ids");
   sized(c.intensities.size(), kept.intensities, "intensities");
@@ -79,9 +79,9 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
   }
   if (parts.nodes.empty()) refuse("a tree that has taken a frame has no root");
   motion_ = parts.motion;
-  age_ = AgeLimit::of(cfg_, motion_);
-  density_grid_ = ego_grid(motion_, cfg_.density_cap);
-  std::tie(root_cell_, lattice_) = root_placement(cfg_, motion_);
+  s_.age = AgeLimit::of(s_.config, motion_);
+  s_.density_grid = ego_grid(motion_, s_.config.density_cap);
+  std::tie(s_.root_cell, s_.lattice) = root_placement(s_.config, motion_);
 
   std::size_t next_node = 0;
   std::size_t next_point = 0;
@@ -89,52 +89,52 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
     if (next_node == parts.nodes.size()) refuse("the nodes end inside the tree");
     const std::size_t index = next_node++;
     const TreeParts::NodeEntry& entry = parts.nodes[index];
-    const std::uint32_t id = nodes_.make_leaf(parent, octant, cell.depth);
+    const std::uint32_t id = s_.nodes.make_leaf(parent, octant, cell.depth);
     if (entry.leaf) {
-      if (cell.depth < min_leaf_depth_) refuse("node " + std::to_string(index) + ": a leaf above the lattice-fixed depth");
+      if (cell.depth < s_.min_leaf_depth) refuse("node " + std::to_string(index) + ": a leaf above the lattice-fixed depth");
       if (entry.count > n - next_point) {
         refuse("node " + std::to_string(index) + ": a leaf of " + std::to_string(entry.count) + " points past the " +
                std::to_string(n - next_point) + " points left");
       }
-      if (entry.count > cfg_.leaf_capacity && cell.depth < lattice_.max_depth) {
+      if (entry.count > s_.config.leaf_capacity && cell.depth < s_.lattice.max_depth) {
         refuse("node " + std::to_string(index) + ": a leaf of " + std::to_string(entry.count) +
-               " points above the deepest level, where N_max = " + std::to_string(cfg_.leaf_capacity));
+               " points above the deepest level, where N_max = " + std::to_string(s_.config.leaf_capacity));
       }
       const auto at = [&](const auto& column) { return column.empty() ? nullptr : column.data() + next_point; };
       const PointSpan span{at(c.x),   at(c.y),  at(c.z),           at(c.stamps),
                            at(c.ids), at(c.intensities), at(c.times), entry.count};
       for (std::uint32_t i = 0; i < entry.count; ++i) {
         const std::array<float, 3> p{span.x[i], span.y[i], span.z[i]};
-        if (!lattice_.contains(cell, p) || !motion_.box.contains(p[0], p[1], p[2])) {
+        if (!s_.lattice.contains(cell, p) || !motion_.box.contains(p[0], p[1], p[2])) {
           refuse("node " + std::to_string(index) + ": point " + std::to_string(next_point + i) +
                  " lies outside its leaf's cell or the ego box");
         }
       }
-      Node& leaf = nodes_.edit(id);
-      points_.append_span(leaf.link, id, 0, span);
+      Node& leaf = s_.nodes.edit(id);
+      s_.points.append_span(leaf.link, id, 0, span);
       leaf.count = entry.count;
       next_point += entry.count;
     } else {
-      if (cell.depth >= lattice_.max_depth) refuse("node " + std::to_string(index) + ": an inner node at the deepest level");
-      nodes_.make_inner(id);
+      if (cell.depth >= s_.lattice.max_depth) refuse("node " + std::to_string(index) + ": an inner node at the deepest level");
+      s_.nodes.make_inner(id);
       for (int o = 0; o < 8; ++o) {
-        if (entry.children >> o & 1) nodes_.edit_child(id, o) = self(self, id, o, lattice_.child(cell, o));
+        if (entry.children >> o & 1) s_.nodes.edit_child(id, o) = self(self, id, o, s_.lattice.child(cell, o));
       }
     }
-    TreeRepair(*this).refit(id);
-    if (parent != kNone && nodes_[id].count == 0) refuse("node " + std::to_string(index) + ": an empty node");
-    if (!entry.leaf && parent != kNone && cell.depth >= min_leaf_depth_ && nodes_[id].count <= cfg_.leaf_capacity) {
-      refuse("node " + std::to_string(index) + ": an inner node of " + std::to_string(nodes_[id].count) +
+    TreeRepair(s_).refit(id);
+    if (parent != kNone && s_.nodes[id].count == 0) refuse("node " + std::to_string(index) + ": an empty node");
+    if (!entry.leaf && parent != kNone && cell.depth >= s_.min_leaf_depth && s_.nodes[id].count <= s_.config.leaf_capacity) {
+      refuse("node " + std::to_string(index) + ": an inner node of " + std::to_string(s_.nodes[id].count) +
              " points, which would be a leaf");
     }
     return id;
   };
-  root_ = build(build, kNone, 0, root_cell_);
+  s_.root = build(build, kNone, 0, s_.root_cell);
   if (next_node != parts.nodes.size()) refuse(std::to_string(parts.nodes.size() - next_node) + " nodes past the tree");
   if (next_point != n) refuse(std::to_string(n - next_point) + " points past the tree's leaves");
-  if (cfg_.density_cap.enabled()) {
-    count_in_groups(density_, density_grid_,
-                    [&](auto&& add) { TreeRepair(*this).walk_points(root_, [&](const StoredPoint& s) { add(s.p); }); });
+  if (s_.config.density_cap.enabled()) {
+    count_in_groups(s_.density, s_.density_grid,
+                    [&](auto&& add) { TreeRepair(s_).walk_points(s_.root, [&](const StoredPoint& s) { add(s.p); }); });
   }
   assert(check_tree(*this).empty());  // every invariant, by the refusals above
 }

@@ -2,9 +2,12 @@
 // The operations that put a tree's structure right after points left or its lattice moved:
 // refitting a node from what lies below it, dissolving and dropping subtrees, collapsing inner
 // nodes left with few points, and re-linking the subtrees a re-centring keeps. They work on a
-// tree's storage as its friend, and keep its invariants only as Tree's operations compose them.
+// tree's storage (core/tree/tree_storage.hpp), and keep its invariants only as Tree's operations
+// compose them.
 
-#include "core/tree/tree.hpp"
+#include "core/tree/tree_storage.hpp"
+
+#include <eco/types.hpp>
 
 #include <cstdint>
 #include <utility>
@@ -16,7 +19,7 @@ class Subcells;
 
 class TreeRepair {
  public:
-  explicit TreeRepair(Tree& tree) : t_(tree) {}
+  explicit TreeRepair(TreeStorage& storage) : t_(storage) {}
 
   /// Recomputes count, bounds and oldest stamp of `id` from its points or children.
   void refit(std::uint32_t id);
@@ -34,7 +37,7 @@ class TreeRepair {
   /// Turns inner node `id` into one leaf holding all the points below it.
   void collapse(std::uint32_t id);
   /// Unlinks child `octant` of inner node `id` (released, or handed on by dissolve or drop).
-  void unlink_child(std::uint32_t id, int octant) { t_.nodes_.edit_child(id, octant) = kNone; }
+  void unlink_child(std::uint32_t id, int octant) { t_.nodes.edit_child(id, octant) = kNone; }
 
   /// Tree::relink_top's parts: releases the nodes above `depth` and lists the subtrees at `depth`
   /// with their cells (the tree is left without a root); links one under the root, creating the
@@ -48,16 +51,16 @@ class TreeRepair {
   /// Calls f(const StoredPoint&) for every point below `id`.
   template <class F>
   void walk_points(std::uint32_t id, F&& f) const {
-    const Node& n = t_.nodes_[id];
+    const Node& n = t_.nodes[id];
     if (n.leaf) {
-      t_.points_.for_each(n.link, n.count, f);
+      t_.points.for_each(n.link, n.count, f);
       return;
     }
-    t_.nodes_.for_each_child(id, [&](int, std::uint32_t ch) { walk_points(ch, f); });
+    t_.nodes.for_each_child(id, [&](int, std::uint32_t ch) { walk_points(ch, f); });
   }
 
  private:
-  Tree& t_;
+  TreeStorage& t_;
 };
 
 }  // namespace eco::detail
