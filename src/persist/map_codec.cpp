@@ -4,8 +4,10 @@
 
 #include "bytes/byte_stream.hpp"
 #include "bytes/checksum.hpp"
-#include "core/tree/tree_parts.hpp"
 #include "core/geometry/update_arguments.hpp"
+#include "core/tree/tree_parts.hpp"
+
+#include <eco/config_fields.hpp>
 
 #include <array>
 #include <cmath>
@@ -20,42 +22,41 @@ constexpr std::size_t kChecksumBytes = 4;
 
 // --- the configuration --------------------------------------------------------------------------
 
-void put_config(ByteWriter& out, const Config& c) {
-  out.put(c.box_side);
-  out.put(c.leaf_capacity);
-  out.put(c.min_cell_size);
-  out.put(std::uint8_t(c.recentring));
-  out.put(c.quantum_levels);
-  out.put(std::uint8_t(c.insert_policy));
-  out.put(c.density_cap.cell_size);
-  out.put(c.density_cap.max_points);
-  out.put(c.max_age_frames);
-  out.put(c.max_age_seconds);
-  out.put(std::uint8_t(c.attributes.ids));
-  out.put(std::uint8_t(c.attributes.intensity));
-  out.put(std::uint8_t(c.attributes.time));
-  out.put(std::uint8_t(c.clearing.enabled));
-  out.put(c.clearing.margin);
-  out.put(std::uint8_t(c.clearing.arrivals));
-  out.put(c.sensor.vertical_fov_min);
-  out.put(c.sensor.vertical_fov_max);
-  out.put(c.sensor.vertical_resolution);
-  out.put(c.sensor.horizontal_resolution);
-  out.put(c.sensor.max_range);
-  out.put(c.voxel_size);
-  if (c.region.shape == RegionShape::Cube) return;  // version 1: no region section
-  out.put(std::uint8_t(c.region.shape));
-  for (const double v : {c.region.radius, c.region.ahead, c.region.behind, c.region.left, c.region.right, c.region.up,
-                         c.region.down}) {
-    out.put(v);
-  }
-  out.put(std::uint8_t(c.region.turn_with));
-  out.put(c.region.lookahead);  // version 3
-  out.put(c.region.frame_period);
-  out.put(c.region.max_points);
+// Every field of Config's table (config_fields()) in its order, each as its kind is stored
+// (Real: double; Count: uint32; Choice, Switch: one byte, the choice's index); the region's
+// fields (region.*) follow the others, and only when the region is not the cube.
+
+bool in_region_section(const ConfigField& field) { return field.name.starts_with("region."); }
+
+/// The file version that first stored `field`.
+std::uint32_t stored_since(const ConfigField& field) {
+  if (!in_region_section(field)) return kMapFileVersion;
+  const bool sized = field.name == "region.lookahead" || field.name == "region.frame_period" ||
+                     field.name == "region.max_points";
+  return sized ? kMapFileVersionSizedRegion : kMapFileVersionWithRegion;
 }
 
-/// A byte that must be 0 or 1 (a flag, or one of two enumerators).
+void put_field(ByteWriter& out, const ConfigField& field, const Config& c) {
+  const double value = field.get(c);
+  switch (field.kind) {
+    case ConfigField::Kind::Real: out.put(value); break;
+    case ConfigField::Kind::Count: out.put(std::uint32_t(value)); break;
+    case ConfigField::Kind::Choice:
+    case ConfigField::Kind::Switch: out.put(std::uint8_t(value)); break;
+  }
+}
+
+void put_config(ByteWriter& out, const Config& c) {
+  for (const ConfigField& field : config_fields()) {
+    if (!in_region_section(field)) put_field(out, field, c);
+  }
+  if (c.region.shape == RegionShape::Cube) return;  // version 1: no region section
+  for (const ConfigField& field : config_fields()) {
+    if (in_region_section(field)) put_field(out, field, c);
+  }
+}
+
+/// A byte that must be 0 or 1 (a flag).
 bool get_flag(ByteReader& in, const char* what) {
   const std::size_t at = in.offset();
   const auto v = in.get<std::uint8_t>(what);
@@ -63,46 +64,38 @@ bool get_flag(ByteReader& in, const char* what) {
   return v == 1;
 }
 
+void get_field(ByteReader& in, const ConfigField& field, Config& c) {
+  const std::string name(field.name);
+  const std::size_t at = in.offset();
+  double value = 0.0;
+  switch (field.kind) {
+    case ConfigField::Kind::Real: value = in.get<double>(name.c_str()); break;
+    case ConfigField::Kind::Count: value = in.get<std::uint32_t>(name.c_str()); break;
+    case ConfigField::Kind::Choice:
+    case ConfigField::Kind::Switch: {
+      const auto index = in.get<std::uint8_t>(name.c_str());
+      const bool cube_here = field.name == "region.shape" && index == std::uint8_t(RegionShape::Cube);
+      if (index >= field.choices.size() || cube_here) {
+        ByteReader::fail_at(at, name + " = " + std::to_string(index) + " is not one of " +
+                                    (cube_here ? std::string("ball | oriented_box") : field.range()));
+      }
+      value = index;
+      break;
+    }
+  }
+  field.set(c, value);
+}
+
 Config get_config(ByteReader& in, std::uint32_t version) {
   const std::size_t start = in.offset();
   Config c;
-  c.box_side = in.get<double>("box_side");
-  c.leaf_capacity = in.get<std::uint32_t>("leaf_capacity");
-  c.min_cell_size = in.get<double>("min_cell_size");
-  c.recentring = get_flag(in, "recentring") ? Recentring::Exact : Recentring::Quantised;
-  c.quantum_levels = in.get<std::uint32_t>("quantum_levels");
-  c.insert_policy = get_flag(in, "insert_policy") ? InsertPolicy::AllInBox : InsertPolicy::ShiftInOnly;
-  c.density_cap.cell_size = in.get<double>("density_cap.cell_size");
-  c.density_cap.max_points = in.get<std::uint32_t>("density_cap.max_points");
-  c.max_age_frames = in.get<std::uint32_t>("max_age_frames");
-  c.max_age_seconds = in.get<double>("max_age_seconds");
-  c.attributes.ids = get_flag(in, "attributes.ids");
-  c.attributes.intensity = get_flag(in, "attributes.intensity");
-  c.attributes.time = get_flag(in, "attributes.time");
-  c.clearing.enabled = get_flag(in, "clearing.enabled");
-  c.clearing.margin = in.get<double>("clearing.margin");
-  c.clearing.arrivals = get_flag(in, "clearing.arrivals");
-  c.sensor.vertical_fov_min = in.get<double>("sensor.vertical_fov_min");
-  c.sensor.vertical_fov_max = in.get<double>("sensor.vertical_fov_max");
-  c.sensor.vertical_resolution = in.get<double>("sensor.vertical_resolution");
-  c.sensor.horizontal_resolution = in.get<double>("sensor.horizontal_resolution");
-  c.sensor.max_range = in.get<double>("sensor.max_range");
-  c.voxel_size = in.get<double>("voxel_size");
-  if (version >= kMapFileVersionWithRegion) {
-    const std::size_t at = in.offset();
-    const auto shape = in.get<std::uint8_t>("region.shape");
-    if (shape < 1 || shape > 2) ByteReader::fail_at(at, "region.shape = " + std::to_string(shape) + " is neither ball nor oriented_box");
-    c.region.shape = RegionShape(shape);
-    for (double* v : {&c.region.radius, &c.region.ahead, &c.region.behind, &c.region.left, &c.region.right, &c.region.up,
-                      &c.region.down}) {
-      *v = in.get<double>("region's extents");
-    }
-    c.region.turn_with = get_flag(in, "region.turn_with") ? TurnWith::Full : TurnWith::Yaw;
+  for (const ConfigField& field : config_fields()) {
+    if (!in_region_section(field)) get_field(in, field, c);
   }
-  if (version >= kMapFileVersionSizedRegion) {
-    c.region.lookahead = in.get<double>("region.lookahead");
-    c.region.frame_period = in.get<double>("region.frame_period");
-    c.region.max_points = in.get<std::uint32_t>("region.max_points");
+  if (version >= kMapFileVersionWithRegion) {
+    for (const ConfigField& field : config_fields()) {
+      if (in_region_section(field) && stored_since(field) <= version) get_field(in, field, c);
+    }
   }
   try {
     c.validate();
