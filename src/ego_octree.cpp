@@ -39,9 +39,9 @@ void EgoOctree::save(const std::string& path) const {
 }
 
 EgoOctree EgoOctree::load(const std::string& path) {
-  const std::string bytes = detail::read_whole_file(path);
+  const detail::FileBytes bytes = detail::read_whole_file(path);
   try {
-    detail::DecodedMap map = detail::decode_map(bytes);
+    detail::DecodedMap map = detail::decode_map(bytes.view());
     return EgoOctree(std::move(map.tree), std::move(map.clearing));
   } catch (const detail::ByteError& e) {
     throw std::runtime_error(path + ": byte " + std::to_string(e.offset) + ": " + e.what());

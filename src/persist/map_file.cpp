@@ -27,22 +27,23 @@ struct Descriptor {
 
 }  // namespace
 
-std::string read_whole_file(const std::string& path) {
+FileBytes read_whole_file(const std::string& path) {
   Descriptor file{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
   if (file.fd < 0) fail(path, "cannot open", errno);
   struct stat info {};
   if (::fstat(file.fd, &info) != 0) fail(path, "cannot read", errno);
   if (!S_ISREG(info.st_mode)) throw std::runtime_error(path + ": not a regular file");
-  std::string bytes(std::size_t(info.st_size), '\0');
+  FileBytes bytes;
+  bytes.data.reset(new char[std::size_t(info.st_size)]);  // not cleared: read() fills it
   std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::read(file.fd, bytes.data() + done, bytes.size() - done);
+  while (done < std::size_t(info.st_size)) {
+    const ssize_t n = ::read(file.fd, bytes.data.get() + done, std::size_t(info.st_size) - done);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) fail(path, "cannot read", errno);
     if (n == 0) break;  // the file shrank while read: what there is
     done += std::size_t(n);
   }
-  bytes.resize(done);
+  bytes.size = done;
   return bytes;
 }
 

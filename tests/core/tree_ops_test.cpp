@@ -5,6 +5,7 @@
 
 #include "core/tree/invariants.hpp"
 #include "core/tree/tree.hpp"
+#include "core/tree/tree_parts.hpp"
 #include "query/frames.hpp"
 #include "update/stages.hpp"
 
@@ -66,6 +67,54 @@ class TreeOpsTest : public ::testing::Test {
   std::unique_ptr<Tree> tree_;
   Points inserted_;
 };
+
+/// A tree taken apart and put back is the same tree; a point moved past its leaf's cell (by the
+/// float just past a wall), out of the box, or made NaN is refused naming its leaf.
+TEST_F(TreeOpsTest, PartsPutBackMakeTheSameTreeAndAStrayPointIsRefused) {
+  Config config;
+  config.leaf_capacity = 8;
+  fill(config, 3000);
+  const TreeParts parts = parts_of(*tree_);
+  const Tree again(config, parts);
+  EXPECT_EQ(check_tree(again), "");
+  ASSERT_EQ(again.size(), tree_->size());
+  const TreeParts back = parts_of(again);
+  EXPECT_EQ(back.points.x, parts.points.x);
+  EXPECT_EQ(back.points.y, parts.points.y);
+  EXPECT_EQ(back.points.z, parts.points.z);
+  // the first leaf's cell, found by walking the pre-order entries to it
+  const Cell root = tree_->root_cell();
+  Cell cell = root;
+  std::uint32_t id = tree_->root();
+  while (!tree_->nodes()[id].leaf) {
+    std::uint32_t first = kNone;
+    int first_octant = 0;
+    tree_->nodes().for_each_child(id, [&](int o, std::uint32_t ch) {
+      if (first == kNone) first = ch, first_octant = o;
+    });
+    cell = tree_->lattice().child(cell, first_octant);
+    id = first;
+  }
+  ASSERT_GT(tree_->nodes()[id].count, 0u);
+  const double lower = tree_->lattice().wall(0, cell.lo[0]);
+  const double upper = tree_->lattice().wall(0, cell.lo[0] + tree_->lattice().side(cell.depth));
+  float at_upper = float(upper);  // the least float on or past the upper wall: the next cell's
+  if (double(at_upper) < upper) at_upper = std::nextafter(at_upper, std::numeric_limits<float>::infinity());
+  float below_lower = float(lower);  // the greatest float below the lower wall
+  if (double(below_lower) >= lower) below_lower = std::nextafter(below_lower, -std::numeric_limits<float>::infinity());
+  for (const float stray : {at_upper, below_lower,
+                            std::numeric_limits<float>::quiet_NaN(), float(tree_->motion().box.hi[0]) + 1.0f}) {
+    TreeParts bad = parts;
+    bad.points.x[0] = stray;
+    try {
+      (void)Tree(config, bad);
+      ADD_FAILURE() << "a point at x = " << stray << " was taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("lies outside its leaf's cell or the ego box"), std::string::npos)
+          << e.what();
+    }
+  }
+}
 
 TEST_F(TreeOpsTest, TakePointsHandsBackEveryPointAndLeavesNoRoot) {
   fill(Config{}, 5000);

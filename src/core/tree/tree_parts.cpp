@@ -103,12 +103,16 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
       const auto at = [&](const auto& column) { return column.empty() ? nullptr : column.data() + next_point; };
       const PointSpan span{at(c.x),   at(c.y),  at(c.z),           at(c.stamps),
                            at(c.ids), at(c.intensities), at(c.times), entry.count};
+      // cells and the box are products of intervals: the points lie inside when their bounds do
+      Aabb bounds;
+      bool numbers = true;
       for (std::uint32_t i = 0; i < entry.count; ++i) {
-        const std::array<float, 3> p{span.x[i], span.y[i], span.z[i]};
-        if (!s_.lattice.contains(cell, p) || !motion_.box.contains(p[0], p[1], p[2])) {
-          refuse("node " + std::to_string(index) + ": point " + std::to_string(next_point + i) +
-                 " lies outside its leaf's cell or the ego box");
-        }
+        bounds.grow(span.x[i], span.y[i], span.z[i]);
+        numbers &= span.x[i] == span.x[i] && span.y[i] == span.y[i] && span.z[i] == span.z[i];
+      }
+      if (!numbers || (entry.count > 0 && (!s_.lattice.contains(cell, bounds) || !motion_.box.contains_all(bounds)))) {
+        refuse("node " + std::to_string(index) + ": a point of points " + std::to_string(next_point) + ".." +
+               std::to_string(next_point + entry.count - 1) + " lies outside its leaf's cell or the ego box");
       }
       Node& leaf = s_.nodes.edit(id);
       s_.points.append_span(leaf.link, id, 0, span);
