@@ -3,8 +3,7 @@
 // so that they take in exactly ECO's points: the pose, the precision origin and the ego box,
 // the admission of scan points, and the density cap's cell counts.
 
-#include "core/density/cell_counts.hpp"
-#include "core/density/density_gate.hpp"
+#include "core/density/density_cells.hpp"
 #include "core/tree/tree.hpp"
 #include "update/admission.hpp"
 #include "query/queries.hpp"
@@ -20,7 +19,7 @@ class FlatFrame {
  public:
   /// Throws std::invalid_argument for a bad configuration, an age limit, free-space clearing or
   /// kept attributes (`who` has none of them).
-  FlatFrame(const Config& config, const std::string& who) : cfg_(config), density_(config.density_cap.max_points) {
+  FlatFrame(const Config& config, const std::string& who) : cfg_(config), density_(config.density_cap) {
     cfg_.validate();
     if (cfg_.max_age_frames > 0) {
       throw std::invalid_argument("the " + who + " baseline has no age limit (max_age_frames = " +
@@ -46,7 +45,7 @@ class FlatFrame {
   Step advance(const Eigen::Isometry3d& world_T_sensor, const ScanView& scan) {
     UpdateStats stats = detail::begin_update(cfg_, world_T_sensor, scan);
     motion_ = detail::next_motion(world_T_sensor, motion_, cfg_.box_side);
-    density_grid_ = detail::ego_grid(motion_, cfg_.density_cap);
+    density_.enter(motion_);
     if (motion_.origin_shift) density_.clear();  // the caller counts the re-expressed points anew
     return {stats, motion_.origin_shift, detail::admission(motion_, cfg_.insert_policy)};
   }
@@ -57,18 +56,13 @@ class FlatFrame {
   void take_in(ScanView scan, Step& step, Take&& take) {
     step.admission.for_each_group(scan, step.stats, [&](const detail::AdmittedGroup& group) {
       std::array<std::uint8_t, detail::kAdmitGroup> passed;
-      step.stats.skipped_by_density +=
-          detail::judge_group(density_, density_grid_, cfg_.density_cap, group.points.data(), group.size, passed.data());
+      step.stats.skipped_by_density += density_.judge(group.points.data(), group.size, passed.data());
       detail::for_each_set(passed.data(), group.size, [&](std::size_t j) { take(group.points[j]); });
     });
   }
   /// Counts a held point (after the origin moved) or forgets one that left.
-  void count(const std::array<float, 3>& p) {
-    if (cfg_.density_cap.enabled()) density_.add(key(p));
-  }
-  void forget(const std::array<float, 3>& p) {
-    if (cfg_.density_cap.enabled()) density_.remove(key(p));
-  }
+  void count(const std::array<float, 3>& p) { density_.count(p); }
+  void forget(const std::array<float, 3>& p) { density_.forget(p); }
 
   [[nodiscard]] detail::Box box() const { return motion_.box; }
   [[nodiscard]] std::array<double, 3> local(const Eigen::Vector3d& w) const {
@@ -121,14 +115,9 @@ class FlatFrame {
   [[nodiscard]] std::size_t bytes() const { return sizeof(*this) + density_.bytes(); }
 
  private:
-  [[nodiscard]] std::uint64_t key(const std::array<float, 3>& p) const {
-    return detail::CellCounts::key(density_grid_.index(p));
-  }
-
   Config cfg_;
   detail::Motion motion_;  // the current frame's, as ECO's stage 1 finds it
-  detail::CellCounts density_;
-  detail::WorldGrid density_grid_{{0, 0, 0}, 1.0};  // the cap's cells from the current anchor
+  detail::DensityCells density_;
 };
 
 /// Nearest first, as every query reports neighbours.

@@ -3,7 +3,6 @@
 
 #include "core/tree/tree.hpp"
 
-#include "core/density/density_gate.hpp"
 #include "core/tree/tree_repair.hpp"
 
 #include "core/geometry/subcells.hpp"
@@ -49,7 +48,7 @@ TreeMemory Tree::memory() const {
 void Tree::set_motion(const Motion& m) {
   motion_ = m;
   s_.age = AgeLimit::of(s_.config, m);
-  s_.density_grid = ego_grid(m, s_.config.density_cap);
+  s_.density.enter(m);
   if (m.clock.shift) shift_times(*m.clock.shift);  // in place, nothing moves
 }
 
@@ -68,13 +67,11 @@ void Tree::shift_times(double shift) {
 }
 
 std::size_t Tree::judge_density(const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed) {
-  return judge_group(s_.density, s_.density_grid, s_.config.density_cap, points, n, passed);
+  return s_.density.judge(points, n, passed);
 }
 
 void Tree::recount_density(const std::vector<StoredPoint>& held) {
-  s_.density.clear();
-  if (!s_.config.density_cap.enabled()) return;
-  count_in_groups(s_.density, s_.density_grid, [&](auto&& add) {
+  s_.density.recount([&](auto&& add) {
     for (const StoredPoint& s : held) add(s.p);
   });
 }

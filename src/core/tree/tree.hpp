@@ -94,7 +94,7 @@ class Tree {
   void retain(std::uint32_t id, Keep&& keep);
   /// Takes a point handed on between stages, outside the tree, out of the density counts.
   void forget(const StoredPoint& s) {
-    if (s_.config.density_cap.enabled()) s_.density.remove(CellCounts::key(s_.density_grid.index(s.p)));
+    s_.density.forget(s.p);
   }
   /// Takes points out in place as `filter` judges each subtree and leaf (core/tree/subtree_filter.hpp).
   template <class Filter>

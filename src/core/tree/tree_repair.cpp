@@ -3,7 +3,6 @@
 
 #include "core/tree/tree_repair.hpp"
 
-#include "core/density/density_gate.hpp"
 #include "core/geometry/subcells.hpp"
 
 #include <algorithm>
@@ -129,10 +128,7 @@ void TreeRepair::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
 
 void TreeRepair::drop(std::uint32_t id, UpdateStats& stats) {
   stats.pruned += t_.nodes[id].count;
-  if (t_.config.density_cap.enabled()) {
-    forget_in_groups(t_.density, t_.density_grid,
-                     [&](auto&& offer) { walk_points(id, [&](const StoredPoint& s) { offer(s.p); }); });
-  }
+  t_.density.forget_all([&](auto&& offer) { walk_points(id, [&](const StoredPoint& s) { offer(s.p); }); });
   dissolve(id, nullptr);
 }
 

@@ -14,7 +14,7 @@ TreeStorage::TreeStorage(const Config& c)
       points(Columns{c.max_age_frames > 0, c.attributes.ids, c.attributes.intensity, c.attributes.time}, ledger),
       min_leaf_depth(detail::min_leaf_depth(c)),
       keeps_subcells(c.recentring == Recentring::Quantised),
-      density(c.density_cap.max_points) {
+      density(c.density_cap) {
   lattice.max_depth = c.max_depth();
 }
 
@@ -29,7 +29,7 @@ TreeStorage::TreeStorage(TreeStorage& live, NodeStore copied_nodes)
       min_leaf_depth(live.min_leaf_depth),
       keeps_subcells(live.keeps_subcells),
       age(live.age),
-      density(live.config.density_cap.max_points) {}
+      density(live.config.density_cap) {}
 
 std::uint32_t TreeStorage::child_or_new(std::uint32_t id, const Cell& cell, int octant) {
   std::uint32_t ch = nodes.child(id, octant);

@@ -5,7 +5,7 @@
 // Tree composes its operations on it; batch insertion (core/tree/batch_insertion.hpp) and
 // repair (core/tree/tree_repair.hpp) are operations on it too, each handed the storage it works on.
 
-#include "core/density/cell_counts.hpp"
+#include "core/density/density_cells.hpp"
 #include "core/geometry/geometry.hpp"
 #include "core/storage/node_store.hpp"
 #include "core/storage/point_store.hpp"
@@ -60,8 +60,7 @@ struct TreeStorage {
   bool keeps_subcells = false;  ///< Quantised mode: every leaf's Node::subcells kept
   AgeLimit age;                 ///< the current frame's
   StartTable start;
-  CellCounts density;  ///< points per density-cap cell, kept while the cap is on
-  WorldGrid density_grid{{0, 0, 0}, 1.0};  ///< the cap's cells from the current anchor
+  DensityCells density;  ///< points per density-cap cell, kept while the cap is on
   WorkingBuffers buffers;
 };
 
