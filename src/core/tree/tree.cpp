@@ -14,10 +14,17 @@
 
 namespace eco::detail {
 
-Tree::Tree(const Config& config) : s_(config) {
-  s_.config.validate();
-  s_.age = AgeLimit::of(s_.config, motion_);
+namespace {
+
+/// `config`, once validate() took it: the storage is sized from it.
+const Config& validated(const Config& config) {
+  config.validate();
+  return config;
 }
+
+}  // namespace
+
+Tree::Tree(const Config& config) : s_(validated(config)) { s_.age = AgeLimit::of(s_.config, motion_); }
 
 Tree::Tree(Tree& live, Sharing)
     : s_(live.s_, live.s_.nodes.share(live.shelf_->take())),

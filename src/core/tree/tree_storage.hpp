@@ -34,7 +34,7 @@ struct StartTable {
 };
 
 struct TreeStorage {
-  /// An empty tree's storage under `config` (validated by the caller).
+  /// An empty tree's storage under `config`, which must have passed Config::validate().
   explicit TreeStorage(const Config& config);
   /// A snapshot's: `live`'s points shared page by page, `nodes` its copy of `live`'s nodes; no
   /// start table, density counts or buffers (a snapshot takes no points in).
