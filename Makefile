@@ -10,6 +10,7 @@ DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev lld libeigen3-dev lib
                    librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev pluginlib-dev \
                    librcpputils-dev librcutils-dev libament-index-cpp-dev \
                    python3-rosbag python3-sensor-msgs python3-nav-msgs python3-geometry-msgs python3-std-msgs python3-tf2-msgs \
+                   ros-core libroscpp-dev libtf2-ros-dev libvisualization-msgs-dev libstd-srvs-dev python3-rospy python3-std-srvs \
                    libnanoflann-dev libcli11-dev nlohmann-json3-dev libpcl-dev \
                    pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest \
                    python3-matplotlib python3-pip python3-venv python3-setuptools python3-wheel \

@@ -35,11 +35,8 @@ PoseTrack parse_tum(std::string_view text, const std::string& source) {
     }
     Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     if (std::abs(q.norm() - 1.0) > 1e-3) cursor.fail("the quaternion's length is " + std::to_string(q.norm()) + ", not 1");
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = q.normalized().toRotationMatrix();
-    pose.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
     track.times.push_back(v[0]);
-    track.poses.push_back(pose);
+    track.poses.push_back(pose_of({v[1], v[2], v[3]}, q));
   }
   if (track.poses.empty()) throw Error(source, "", "holds no poses");
   return track;
@@ -57,6 +54,13 @@ PoseTrack parse_pose_file(std::string_view text, const std::string& source) {
     cursor.fail("a pose line of " + std::to_string(words) + " numbers: neither KITTI's 12 nor TUM's 8");
   }
   throw Error(source, "", "holds no poses");
+}
+
+Eigen::Isometry3d pose_of(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = orientation.normalized().toRotationMatrix();
+  pose.translation() = position;
+  return pose;
 }
 
 std::optional<Eigen::Isometry3d> pose_at(const PoseTrack& track, double time) {

@@ -35,10 +35,7 @@ WorkloadFrame RecordingWorkload::frame(std::size_t index) const {
   out.intensities = std::move(scan.cloud.intensities);
   out.time = double(scan.stamp_ns) * 1e-9;
   out.point_times = std::move(scan.cloud.times);
-  if (given_ && given_->at_time && given_->place_points && !out.point_times.empty()) {
-    (void)place_at_stamp(out.points, out.point_times, out.time, given_->at_time);
-    out.point_times.clear();
-  }
+  if (given_ && given_->at_time && given_->place_points) (void)place_frame_at_stamp(out, given_->at_time);
   return out;
 }
 

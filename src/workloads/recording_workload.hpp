@@ -3,9 +3,8 @@
 // frame with their times, placed by the poses given: one a cloud in order, or a pose at any time
 // (interpolated at the cloud's stamp; clouds outside the poses' span are left out and counted).
 
-#include "sweep_placement.hpp"
-
 #include <eco/io/recording.hpp>
+#include <eco/workloads/sweep_placement.hpp>
 #include <eco/workloads/workload.hpp>
 
 #include <vector>

@@ -1,4 +1,4 @@
-#include "sweep_placement.hpp"
+#include <eco/workloads/sweep_placement.hpp>
 
 #include <eco/io/pose_file.hpp>
 
@@ -32,6 +32,13 @@ std::size_t place_at_stamp(std::vector<Eigen::Vector3f>& points, std::span<const
     }
     points[i] = (*stamp_T_sensor * points[i].cast<double>()).cast<float>();
   }
+  return unplaced;
+}
+
+std::size_t place_frame_at_stamp(WorkloadFrame& frame, const PoseAtTime& pose_at) {
+  if (frame.point_times.empty()) return 0;
+  const std::size_t unplaced = place_at_stamp(frame.points, frame.point_times, frame.time, pose_at);
+  frame.point_times.clear();
   return unplaced;
 }
 

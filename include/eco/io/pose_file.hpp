@@ -20,6 +20,10 @@ struct PoseTrack {
   [[nodiscard]] bool timed() const { return !times.empty(); }
 };
 
+/// A position and an orientation (a unit quaternion, normalised once more) as a pose: how a TUM
+/// line, a ROS pose or transform message and eco_node's poses are read.
+[[nodiscard]] Eigen::Isometry3d pose_of(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation);
+
 /// The pose at `time` of a timed track: translations interpolated linearly and rotations by
 /// slerp between the poses either side; nullopt outside the track's span (or for a track
 /// without times).

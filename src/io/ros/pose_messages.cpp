@@ -2,6 +2,8 @@
 
 #include "io/ros/byte_reader.hpp"
 
+#include <eco/io/pose_file.hpp>
+
 #include <cmath>
 
 namespace eco::io::detail {
@@ -25,10 +27,7 @@ Eigen::Isometry3d read_pose(ByteReader& in) {
   }
   const Eigen::Quaterniond q(v[6], v[3], v[4], v[5]);
   if (std::abs(q.norm() - 1.0) > 1e-3) in.fail("the quaternion's length is " + std::to_string(q.norm()) + ", not 1");
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = q.normalized().toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
-  return pose;
+  return pose_of({v[0], v[1], v[2]}, q);
 }
 
 /// A message body: the header, child_frame_id (all but PoseStamped), then the pose. ROS 1's header
