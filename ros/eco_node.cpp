@@ -42,9 +42,9 @@ EcoNode::EcoNode(ros::NodeHandle& node, ros::NodeHandle& private_node, std::uniq
     poses_ = std::move(topic);
     pose_messages_ = node.subscribe(settings_.pose_topic, 1000, &EcoNode::on_pose, this);
   }
-  // clouds waiting for tf are looked at again as it comes in, and once they waited too long
+  // started while a cloud waits (tf has no callback of its own when a transform arrives)
   retry_ = node.createSteadyTimer(ros::WallDuration(std::min(0.005, settings_.tf_timeout / 4)),
-                                  [this](const ros::SteadyTimerEvent&) { take_ready(); });
+                                  [this](const ros::SteadyTimerEvent&) { take_ready(); }, false, false);
   ROS_INFO("eco_node: mapping %s, placed by %s", clouds_.getTopic().c_str(), poses_->describe().c_str());
 }
 
@@ -101,7 +101,10 @@ void EcoNode::take_ready() {
     const DecodedSweep& sweep = cloud.sweep;
     SweepPoses poses = poses_->sweep(sweep.frame_id, sweep.first, sweep.last);
     if (poses.state == SweepPoses::State::Waiting) {
-      if (ms_since(cloud.received) < 1e3 * settings_.tf_timeout) return;
+      if (ms_since(cloud.received) < 1e3 * settings_.tf_timeout) {
+        retry_.start();  // looked at again as tf comes in, and once it waited too long
+        return;
+      }
       poses = poses_after_waiting(sweep);
     }
     if (poses.state == SweepPoses::State::Never) {
@@ -111,16 +114,19 @@ void EcoNode::take_ready() {
     } else {
       const double first = sweep.first;
       const std::int64_t stamp_ns = sweep.stamp_ns;
-      hand_over(session_->take(std::move(cloud.sweep), poses.pose_at), stamp_ns, cloud.received);
+      const double waited_ms = ms_since(cloud.received);
+      hand_over(session_->take(std::move(cloud.sweep), poses.pose_at), stamp_ns, cloud.received, waited_ms);
       poses_->forget_before(first);
     }
     waiting_.pop_front();
   }
+  retry_.stop();  // nothing waits
 }
 
 void EcoNode::take_by_odometry(Waiting cloud) {
   const std::string frame_id = cloud.sweep.frame_id;
   const ros::Time stamp = ros_time(cloud.sweep.stamp_ns);
+  const double waited_ms = ms_since(cloud.received);
   TakenFrame taken = session_->take_by_odometry(std::move(cloud.sweep));
   nav_msgs::Odometry odom;
   odom.header.stamp = stamp;
@@ -137,13 +143,13 @@ void EcoNode::take_by_odometry(Waiting cloud) {
   stamped.child_frame_id = frame_id;
   stamped.transform = t;
   tf_broadcaster_.sendTransform(stamped);
-  hand_over(std::move(taken), std::int64_t(stamp.toNSec()), cloud.received);
+  hand_over(std::move(taken), std::int64_t(stamp.toNSec()), cloud.received, waited_ms);
 }
 
-void EcoNode::hand_over(TakenFrame taken, std::int64_t stamp_ns, Clock::time_point received) {
+void EcoNode::hand_over(TakenFrame taken, std::int64_t stamp_ns, Clock::time_point received, double waited_ms) {
   const bool publish_map = taken.stats.frame % settings_.publish_every == 0;
-  publisher_.offer({std::move(taken), ros_time(stamp_ns), received, ms_since(received), publish_map, lost_, skipped_,
-                    refused_});
+  publisher_.offer({std::move(taken), ros_time(stamp_ns), received, waited_ms, ms_since(received), publish_map, lost_,
+                    skipped_, refused_});
 }
 
 bool EcoNode::on_save(std_srvs::Trigger::Request& /*request*/, std_srvs::Trigger::Response& response) {

@@ -47,8 +47,9 @@ class EcoNode {
   [[nodiscard]] SweepPoses poses_after_waiting(const DecodedSweep& sweep);
   /// Estimates the cloud's pose by ECO's odometry, publishes it (~odom and tf), and maps it.
   void take_by_odometry(Waiting cloud);
-  /// Hands a taken cloud (of `stamp_ns`, arrived at `received`) to the publisher.
-  void hand_over(TakenFrame taken, std::int64_t stamp_ns, Clock::time_point received);
+  /// Hands a taken cloud (of `stamp_ns`, arrived at `received`, its poses known `waited_ms` later)
+  /// to the publisher.
+  void hand_over(TakenFrame taken, std::int64_t stamp_ns, Clock::time_point received, double waited_ms);
 
   std::unique_ptr<MapSession> session_;
   const NodeSettings& settings_;

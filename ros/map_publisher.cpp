@@ -60,8 +60,11 @@ void MapPublisher::publish(const UpdatedFrame& frame, bool send_map) {
   header.stamp = frame.stamp;
   header.frame_id = settings_.fixed_frame;
   const FrameMap& map = *frame.taken.map;
+  const auto since_received = [&] { return std::chrono::duration<double, std::milli>(Clock::now() - frame.received).count(); };
+  double latency_ms = 0.0;
   if (send_map) {
     map_.publish(map_cloud(map, header));
+    latency_ms = since_received();
     if (settings_.voxel > 0.0) voxels_.publish(xyz_cloud(map.voxel_centres(settings_.voxel), header));
   }
   region_.publish(region_marker(map.region(), header));
@@ -70,10 +73,11 @@ void MapPublisher::publish(const UpdatedFrame& frame, bool send_map) {
       {"frame", s.frame},           {"stamp", frame.stamp.toSec()}, {"scan_points", s.scan_points},
       {"inserted", s.inserted},     {"pruned", s.pruned},           {"cleared", s.cleared},
       {"held", s.held},             {"update_ms", s.update_ms},     {"waited_ms", frame.waited_ms},
+      {"taken_ms", frame.taken_ms},
       {"map_published", send_map},  {"lost", frame.lost},           {"skipped", frame.skipped},
       {"refused", frame.refused},
-      // the cloud's arrival to the map sent (or to the statistics, for a frame whose map is not)
-      {"latency_ms", std::chrono::duration<double, std::milli>(Clock::now() - frame.received).count()}};
+      // the cloud's arrival to its map sent (to the statistics, for a frame whose map is not)
+      {"latency_ms", send_map ? latency_ms : since_received()}};
   std_msgs::String text;
   text.data = stats.dump();
   stats_.publish(text);

@@ -22,7 +22,8 @@ struct UpdatedFrame {
   TakenFrame taken;
   ros::Time stamp;
   Clock::time_point received;  ///< when its cloud arrived
-  double waited_ms = 0.0;      ///< from then until its poses were known
+  double waited_ms = 0.0;      ///< from then until its poses were known (decoding included)
+  double taken_ms = 0.0;       ///< ... until it was in the map, its snapshot made
   bool publish_map = false;
   std::size_t lost = 0, skipped = 0, refused = 0;  ///< clouds so far: missed upstream, without poses, undecodable
 };

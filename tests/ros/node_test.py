@@ -1,4 +1,4 @@
-"""eco_node as a process on a real roscore (tests/ros/ros_graph.py), fed by `rosbag play` of a bag
+"""eco_node as a process on a real roscore (ros/scripts/ros_graph.py), fed by `rosbag play` of a bag
 written by Debian's rosbag (write_drive_bag.py) or by this script's own publishers.
 
 usage: node_test.py CASE ECO_NODE ECO_CLI KITTI_DIR WORK_DIR
@@ -26,7 +26,7 @@ from sensor_msgs.msg import PointCloud2, PointField
 from std_msgs.msg import String
 from std_srvs.srv import Trigger
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "ros", "scripts"))
 from ros_graph import Graph, stop  # noqa: E402
 
 case, ECO_NODE, ECO_CLI, KITTI, WORK = sys.argv[1:6]

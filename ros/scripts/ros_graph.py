@@ -1,5 +1,5 @@
-"""A ROS 1 graph of the test's own: roscore on a free port (ROS_MASTER_URI), its logs in a folder of
-the test's, and eco_node started and stopped as a process, as a user runs them."""
+"""A ROS 1 graph of its own for a test or a benchmark: roscore on a free port (ROS_MASTER_URI), its logs in a
+folder of the caller's, and eco_node started and stopped as a process, as a user runs them."""
 
 import os
 import signal
@@ -64,9 +64,10 @@ class Graph:
             os.killpg(self.core.pid, signal.SIGKILL)
             self.core.wait()
 
-    def node(self, eco_node, name, parameters):
-        """eco_node as `name` with private parameters (_name:=value), its output in a file."""
-        args = [eco_node, f"__name:={name}"] + [f"_{k}:={v}" for k, v in parameters.items()]
+    def node(self, eco_node, name, parameters, prefix=()):
+        """eco_node as `name` with private parameters (_name:=value), its output in a file; `prefix`
+        runs it through another command (taskset -c 0)."""
+        args = [*prefix, eco_node, f"__name:={name}"] + [f"_{k}:={v}" for k, v in parameters.items()]
         log = open(os.path.join(self.work, name + ".log"), "w")
         process = subprocess.Popen(args, env=self.env(), stdout=log, stderr=subprocess.STDOUT)
         self.started.append(process)
