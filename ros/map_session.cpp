@@ -72,7 +72,8 @@ class SnapshotMap final : public FrameMap {
       }
     };
     if (!has_intensity()) {
-      map_->for_each_point([&](const Eigen::Vector3d& p) { put({float(p.x()), float(p.y()), float(p.z())}); });
+      // a vector's data is aligned for any scalar: its bytes hold the floats in place
+      map_->copy_points(std::span<float>(reinterpret_cast<float*>(bytes.data()), 3 * map_->size()));
     } else {
       for (const HeldPoint& h : map_->points_with_attributes()) {
         put({float(h.point.x()), float(h.point.y()), float(h.point.z()), h.attributes.intensity});

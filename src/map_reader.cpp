@@ -32,6 +32,14 @@ void MapReader::for_each_point(const std::function<void(const Eigen::Vector3d&)>
   detail::for_each_held(held(), visit);
 }
 
+void MapReader::copy_points(std::span<float> xyz, const Eigen::Vector3d& origin) const {
+  if (xyz.size() != 3 * size()) {
+    throw std::invalid_argument("copy_points: " + std::to_string(xyz.size()) + " floats for " + std::to_string(size()) +
+                                " points (3 a point)");
+  }
+  detail::copy_held(held(), origin, xyz.data());
+}
+
 std::vector<Eigen::Vector3d> MapReader::points() const {
   std::vector<Eigen::Vector3d> out;
   out.reserve(size());

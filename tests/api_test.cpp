@@ -1,5 +1,5 @@
 // The API's conveniences agree with its core: relative updates, strided scans, caller-owned
-// buffers, statistics, iteration and the ego box.
+// buffers, statistics, iteration, the points copied as floats, and the ego box.
 
 #include "support/compare.hpp"
 #include "support/streams.hpp"
@@ -43,6 +43,42 @@ TEST(Api, StridedKittiRecordsReadLikePackedPoints) {
   b.update(Eigen::Isometry3d::Identity(), ScanView(kitti.data(), packed.size(), 4));
   EXPECT_EQ(sorted(a.points()), sorted(b.points()));
   EXPECT_EQ(a.size(), 500u);
+}
+
+TEST(Api, CopiedPointsAreTheHeldPointsAsFloats) {
+  Config cfg;
+  cfg.insert_policy = InsertPolicy::AllInBox;
+  cfg.leaf_capacity = 4;
+  EgoOctree tree(cfg);
+  Oracle oracle(cfg);
+  // far from the world's origin, where a float of the world coordinate rounds (the precision
+  // origin is not zero), and through updates that move, split and empty leaves
+  Stream stream(Motion::Diagonal, Cloud::Uniform, cfg.box_side, 9u);
+  const Eigen::Isometry3d far(Eigen::Translation3d(5000.0, -3000.0, 20.0));
+  std::shared_ptr<const Snapshot> before;
+  for (int t = 0; t < 8; ++t) {
+    const auto scan = stream.scan(t);
+    tree.update(far * stream.pose(t), scan);
+    oracle.update(far * stream.pose(t), scan, tree.precision_origin());
+    if (t == 4) before = tree.snapshot();
+    for (const Eigen::Vector3d& origin : std::array<Eigen::Vector3d, 2>{Eigen::Vector3d::Zero(), tree.pose().translation()}) {
+      std::vector<float> xyz(3 * tree.size());
+      tree.copy_points(xyz, origin);
+      const std::vector<Eigen::Vector3d> held = tree.points();  // the same order
+      ASSERT_EQ(held.size(), oracle.size());
+      for (std::size_t i = 0; i < held.size(); ++i) {
+        for (int a = 0; a < 3; ++a) ASSERT_EQ(xyz[3 * i + std::size_t(a)], float(held[i][a] - origin[a])) << i;
+      }
+    }
+  }
+  std::vector<float> xyz(3 * before->size());  // a snapshot copies its own frame's
+  before->copy_points(xyz);
+  const std::vector<Eigen::Vector3d> held = before->points();
+  for (std::size_t i = 0; i < held.size(); ++i) ASSERT_EQ(xyz[3 * i + 1], float(held[i].y()));
+  std::vector<float> short_by_one(3 * tree.size() - 1);
+  EXPECT_THROW(tree.copy_points(short_by_one), std::invalid_argument);
+  EgoOctree empty;
+  empty.copy_points({});  // nothing to copy
 }
 
 TEST(Api, CallerBufferKnnAndStatistics) {

@@ -92,6 +92,11 @@ class MapReader {
   [[nodiscard]] std::vector<HeldPoint> points_with_attributes() const;
   /// Calls `visit` once per held point with its world coordinates.
   void for_each_point(const std::function<void(const Eigen::Vector3d&)>& visit) const;
+  /// Every held point as float32 x, y, z, in world axes less `origin` (each float the world
+  /// coordinate in double, less origin's, rounded once), 3 floats a point into `xyz`, in points()'
+  /// order: the bulk copy a viewer or a ROS message takes, a leaf's block at a time. Throws
+  /// std::invalid_argument unless `xyz` holds 3 × size() floats.
+  void copy_points(std::span<float> xyz, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero()) const;
 
   [[nodiscard]] std::size_t size() const;  ///< points held, O(1)
   [[nodiscard]] Stats stats() const;       ///< O(nodes)

@@ -13,6 +13,26 @@ void for_each_held(const Tree& t, const std::function<void(const Eigen::Vector3d
       t, t.root(), [](const Aabb&) { return 2; }, [&](const StoredPoint& s, bool) { visit(t.motion().to_world(s.p)); });
 }
 
+void copy_held(const Tree& t, const Eigen::Vector3d& origin, float* out) {
+  if (t.root() == kNone) return;
+  const Eigen::Vector3d anchor = t.motion().anchor;
+  const auto walk = [&](auto&& self, std::uint32_t id) -> void {
+    const Node& n = t.nodes()[id];
+    if (n.count == 0) return;
+    if (!n.leaf) {
+      t.nodes().for_each_child(id, [&](int, std::uint32_t child) { self(self, child); });
+      return;
+    }
+    const PointSpan s = t.points().span(n.link, n.count);
+    for (std::uint32_t i = 0; i < s.size; ++i, out += 3) {  // as to_world, then less the origin
+      out[0] = float((anchor[0] + double(s.x[i])) - origin[0]);
+      out[1] = float((anchor[1] + double(s.y[i])) - origin[1]);
+      out[2] = float((anchor[2] + double(s.z[i])) - origin[2]);
+    }
+  };
+  walk(walk, t.root());
+}
+
 std::vector<HeldPoint> held_points(const Tree& t) {
   std::vector<HeldPoint> out;
   out.reserve(t.size());

@@ -33,6 +33,8 @@ std::vector<VoxelKey> voxel_keys_of(const Tree& t, double resolution);
 void sort_unique(std::vector<VoxelKey>& keys, std::size_t from = 0);
 /// Calls visit(world point) once per held point.
 void for_each_held(const Tree& t, const std::function<void(const Eigen::Vector3d&)>& visit);
+/// Writes each held point (for_each_held's order) as float(world - origin) to out[3i..3i+2].
+void copy_held(const Tree& t, const Eigen::Vector3d& origin, float* out);
 /// Every held point with its attributes, world frame.
 std::vector<HeldPoint> held_points(const Tree& t);
 /// Points, nodes, leaf depths and bytes: a walk over the nodes.
