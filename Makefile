@@ -68,6 +68,9 @@ FUZZ_SECONDS ?= 6
 ## ld takes for each of their hundred test executables.
 SANITIZED_DEBUG := -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld \
                    -DCMAKE_SHARED_LINKER_FLAGS=-fuse-ld=lld
+## A report's allocation stack 4 frames deep, not 30: every allocation unwinds it, and the tests
+## run 10-15 % faster (rerun a failing test with ASAN_OPTIONS unset for the whole stack).
+SANITIZED_TEST_ASAN := malloc_context_size=4
 test: test-release test-sanitize test-threads test-fuzz
 
 test-release: build
@@ -79,7 +82,7 @@ test-sanitize: deps
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_CXX_COMPILER=clang++ $(SANITIZED_DEBUG) -DECO_SANITIZE=ON -DECO_BUILD_EXAMPLES=OFF \
 	  -DECO_BUILD_TOOLS=OFF -DPython_EXECUTABLE=$(PYTHON)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
-	ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+	ASAN_OPTIONS=$(SANITIZED_TEST_ASAN) ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
 test-threads: deps
 	cmake -S . -B $(TSAN_BUILD) $(SANITIZED_DEBUG) -DECO_THREAD_SANITIZE=ON -DECO_BUILD_TOOLS=OFF -DECO_BUILD_EXAMPLES=OFF
