@@ -3,9 +3,8 @@
 BUILD      ?= build
 ASAN_BUILD ?= build-sanitize
 TSAN_BUILD ?= build-tsan
-FUZZ_BUILD ?= build-fuzz
 JOBS       ?= $(shell nproc)
-DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev lld libeigen3-dev libgtest-dev liblzf-dev zlib1g-dev \
+DEBIAN_PACKAGES := cmake make g++ clang libclang-rt-14-dev lld libeigen3-dev libgtest-dev liblzf-dev zlib1g-dev libisal-dev \
                    liblz4-dev libzstd-dev libsqlite3-dev \
                    librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev pluginlib-dev \
                    librcpputils-dev librcutils-dev libament-index-cpp-dev \
@@ -60,8 +59,8 @@ demo: deps
 ## test: the command-line, Python, viewer and install tests and the vector loops' in a release
 ## build; every C++ unit test under AddressSanitizer + UBSan, built by clang (its UBSan also
 ## checks float-to-int conversions, which GCC's leaves out, and it compiles the tests in two
-## thirds of GCC's time); the concurrency tests under ThreadSanitizer; then each parser's
-## libFuzzer target for a fixed time (FUZZ_SECONDS) under ASan + UBSan.
+## thirds of GCC's time), and beside them each parser's libFuzzer target for a fixed time
+## (FUZZ_SECONDS); then the concurrency tests under ThreadSanitizer.
 FUZZ_SECONDS ?= 6
 ## The sanitized builds keep line tables only: all a sanitizer's report needs, and about 30 % less
 ## time to compile than full debug information; they link with LLVM's lld, a fifth of the time GNU
@@ -71,29 +70,33 @@ SANITIZED_DEBUG := -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DCMAKE_
 ## A report's allocation stack 4 frames deep, not 30: every allocation unwinds it, and the tests
 ## run 10-15 % faster (rerun a failing test with ASAN_OPTIONS unset for the whole stack).
 SANITIZED_TEST_ASAN := malloc_context_size=4
-test: test-release test-sanitize test-threads test-fuzz
+test: test-release test-sanitize test-threads
 
 test-release: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 ## The sanitized build leaves out the eco command (a third of its compile time): its tests, and the
-## viewer's server behind it, run in the release build; its code's libraries are tested here.
+## viewer's server behind it, run in the release build; its code's libraries are tested here. The
+## parsers' fuzzers are built and run beside the unit tests, on the same libraries.
+SANITIZED_CONFIG = -DCMAKE_CXX_COMPILER=clang++ $(SANITIZED_DEBUG) -DECO_SANITIZE=ON -DECO_FUZZ=ON \
+                   -DECO_FUZZ_SECONDS=$(FUZZ_SECONDS) -DECO_BUILD_EXAMPLES=OFF -DECO_BUILD_TOOLS=OFF \
+                   -DPython_EXECUTABLE=$(PYTHON)
 test-sanitize: deps
-	cmake -S . -B $(ASAN_BUILD) -DCMAKE_CXX_COMPILER=clang++ $(SANITIZED_DEBUG) -DECO_SANITIZE=ON -DECO_BUILD_EXAMPLES=OFF \
-	  -DECO_BUILD_TOOLS=OFF -DPython_EXECUTABLE=$(PYTHON)
+	cmake -S . -B $(ASAN_BUILD) $(SANITIZED_CONFIG)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ASAN_OPTIONS=$(SANITIZED_TEST_ASAN) ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
+## The concurrency tests under ThreadSanitizer, built by clang too (in two thirds of GCC's time).
 test-threads: deps
-	cmake -S . -B $(TSAN_BUILD) $(SANITIZED_DEBUG) -DECO_THREAD_SANITIZE=ON -DECO_BUILD_TOOLS=OFF -DECO_BUILD_EXAMPLES=OFF
+	cmake -S . -B $(TSAN_BUILD) -DCMAKE_CXX_COMPILER=clang++ $(SANITIZED_DEBUG) -DECO_THREAD_SANITIZE=ON -DECO_BUILD_TOOLS=OFF -DECO_BUILD_EXAMPLES=OFF
 	cmake --build $(TSAN_BUILD) -j $(JOBS) --target snapshot_threads_test batch_knn_test
 	ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS)
 
+## test-fuzz: the fuzzers alone (make test runs them in test-sanitize), e.g. longer: FUZZ_SECONDS=600.
 test-fuzz: deps
-	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ $(SANITIZED_DEBUG) -DECO_FUZZ=ON \
-	  -DECO_BUILD_TESTS=OFF -DECO_BUILD_TOOLS=OFF -DECO_BUILD_EXAMPLES=OFF -DECO_FUZZ_SECONDS=$(FUZZ_SECONDS)
-	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzzers
-	ctest --test-dir $(FUZZ_BUILD) --output-on-failure -j $(JOBS)
+	cmake -S . -B $(ASAN_BUILD) $(SANITIZED_CONFIG)
+	cmake --build $(ASAN_BUILD) -j $(JOBS) --target fuzzers
+	ASAN_OPTIONS=$(SANITIZED_TEST_ASAN) ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS) -R '^fuzz_'
 
 ## python: the Python package eco, built by pip through setuptools and our CMake, offline, for
 ## PYTHON. Debian's interpreter refuses pip outside a virtual environment (PEP 668) unless told;
@@ -109,4 +112,4 @@ install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) $(FUZZ_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD)

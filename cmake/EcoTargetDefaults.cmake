@@ -10,7 +10,21 @@ function(eco_target_defaults target)
     target_compile_options(${target} PRIVATE -fsanitize=thread -fno-omit-frame-pointer -O1)
     target_link_options(${target} PRIVATE -fsanitize=thread)
   endif()
-  if(ECO_FUZZ)  # coverage for libFuzzer; the fuzz executables add -fsanitize=fuzzer at link
+endfunction()
+
+# eco_fuzz_coverage(<target> [SOURCES files...]): libFuzzer's coverage counters (ECO_FUZZ) in what
+# the fuzzers parse: a whole target, or some of its sources (then compiled without the target's
+# precompiled headers, whose flags differ). Only there: the fuzzers are built beside the unit tests,
+# whose running time counters everywhere would add to.
+function(eco_fuzz_coverage target)
+  if(NOT ECO_FUZZ)
+    return()
+  endif()
+  cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
+  if(ARG_SOURCES)
+    set_source_files_properties(${ARG_SOURCES} TARGET_DIRECTORY ${target} PROPERTIES
+                                COMPILE_OPTIONS -fsanitize=fuzzer-no-link SKIP_PRECOMPILE_HEADERS ON)
+  else()
     target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
   endif()
 endfunction()

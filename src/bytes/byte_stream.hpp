@@ -3,6 +3,7 @@
 // and a reader that takes them in order and names the byte offset of whatever it refuses.
 
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -58,6 +59,16 @@ class ByteReader {
     out.resize(n);
     if (n > 0) std::memcpy(out.data(), bytes_.data() + at_, n * sizeof(T));  // data() may be null when empty
     at_ += n * sizeof(T);
+  }
+  /// The next `n` values of type T where they lie in the bytes read (at any alignment: read them
+  /// with memcpy), and moves past them.
+  template <class T>
+  const std::byte* get_in_place(std::size_t n, const char* what) {
+    static_assert(std::is_arithmetic_v<T>);
+    if (n > left() / sizeof(T)) fail(std::string(what) + ": the file ends inside its " + std::to_string(n) + " values");
+    const auto* at = reinterpret_cast<const std::byte*>(bytes_.data() + at_);
+    at_ += n * sizeof(T);
+    return at;
   }
   /// A count, then as many values.
   template <class T>

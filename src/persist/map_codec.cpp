@@ -192,9 +192,9 @@ Motion get_motion(ByteReader& in, const Config& config, std::uint32_t version) {
 
 // --- the tree -----------------------------------------------------------------------------------
 
-void put_tree(ByteWriter& out, const TreeParts& parts) {
-  out.put(std::uint64_t(parts.nodes.size()));
-  for (const TreeParts::NodeEntry& n : parts.nodes) {
+void put_tree(ByteWriter& out, const TreeLayout& layout) {
+  out.put(std::uint64_t(layout.nodes.size()));
+  for (const NodeEntry& n : layout.nodes) {
     out.put(std::uint8_t(n.leaf ? 0 : 1));
     if (n.leaf) {
       out.put(n.count);
@@ -202,20 +202,24 @@ void put_tree(ByteWriter& out, const TreeParts& parts) {
       out.put(n.children);
     }
   }
-  const TreeParts::Columns& c = parts.points;
-  out.put(std::uint64_t(c.x.size()));
-  const auto column = [&](const auto& values) {
-    out.put_bytes({reinterpret_cast<const char*>(values.data()), values.size() * sizeof(values[0])});
+  out.put(std::uint64_t(layout.point_count));
+  // each column whole, gathered leaf by leaf from where the tree holds it
+  const auto column = [&](auto column_of) {
+    for (const PointSpan& leaf : layout.leaves) {
+      const auto* values = column_of(leaf);  // null: a column the tree does not keep, or no points
+      if (values != nullptr) out.put_bytes({reinterpret_cast<const char*>(values), leaf.size * sizeof(values[0])});
+    }
   };
-  column(c.x);
-  column(c.y);
-  column(c.z);
-  column(c.stamps);
-  column(c.ids);
-  column(c.intensities);
-  column(c.times);
+  column([](const PointSpan& s) { return s.x; });
+  column([](const PointSpan& s) { return s.y; });
+  column([](const PointSpan& s) { return s.z; });
+  column([](const PointSpan& s) { return s.stamps; });
+  column([](const PointSpan& s) { return s.ids; });
+  column([](const PointSpan& s) { return s.intensities; });
+  column([](const PointSpan& s) { return s.times; });
 }
 
+/// The tree of the nodes and points sections, its points read where they lie in the file's bytes.
 std::unique_ptr<Tree> get_tree(ByteReader& in, const Config& config, const Motion& motion) {
   TreeParts parts;
   parts.motion = motion;
@@ -223,7 +227,7 @@ std::unique_ptr<Tree> get_tree(ByteReader& in, const Config& config, const Motio
   const auto m = in.get<std::uint64_t>("node count");
   if (m > in.left() / 2) ByteReader::fail_at(nodes_at, "node count " + std::to_string(m) + ": past the end of the file");
   parts.nodes.resize(m);
-  for (TreeParts::NodeEntry& n : parts.nodes) {
+  for (NodeEntry& n : parts.nodes) {
     n.leaf = !get_flag(in, "node kind");
     if (n.leaf) {
       n.count = in.get<std::uint32_t>("leaf point count");
@@ -231,20 +235,21 @@ std::unique_ptr<Tree> get_tree(ByteReader& in, const Config& config, const Motio
       n.children = in.get<std::uint8_t>("inner node's children");
     }
   }
-  const auto n = in.get<std::uint64_t>("point count");  // get_values refuses a count past the file
+  const auto n = in.get<std::uint64_t>("point count");  // get_in_place refuses a count past the file
+  parts.point_count = n;
   const Columns kept{config.max_age_frames > 0, config.attributes.ids, config.attributes.intensity,
                      config.attributes.time};
-  TreeParts::Columns& c = parts.points;
-  const auto column = [&](auto& values, bool is_kept, const char* what) {
-    if (is_kept) in.get_values(values, n, what);
+  ColumnBytes& c = parts.points;
+  const auto column = [&]<class T>(const std::byte*& values, bool is_kept, T, const char* what) {
+    if (is_kept) values = in.get_in_place<T>(n, what);
   };
-  column(c.x, true, "x");
-  column(c.y, true, "y");
-  column(c.z, true, "z");
-  column(c.stamps, kept.stamps, "stamps");
-  column(c.ids, kept.ids, "ids");
-  column(c.intensities, kept.intensities, "intensities");
-  column(c.times, kept.times, "times");
+  column(c.x, true, float{}, "x");
+  column(c.y, true, float{}, "y");
+  column(c.z, true, float{}, "z");
+  column(c.stamps, kept.stamps, std::uint32_t{}, "stamps");
+  column(c.ids, kept.ids, std::uint32_t{}, "ids");
+  column(c.intensities, kept.intensities, float{}, "intensities");
+  column(c.times, kept.times, float{}, "times");
   try {
     return std::make_unique<Tree>(config, parts);
   } catch (const std::invalid_argument& e) {
@@ -302,19 +307,18 @@ std::unique_ptr<ClearingState> get_clearing(ByteReader& in, const Tree& tree) {
 }  // namespace
 
 std::string encode_map(const Tree& tree, const ClearingState* clearing) {
-  const TreeParts parts = parts_of(tree);
+  const TreeLayout layout = layout_of(tree);
   ByteWriter out;
-  const std::size_t columns = 3 + std::size_t(!parts.points.stamps.empty()) + std::size_t(!parts.points.ids.empty()) +
-                              std::size_t(!parts.points.intensities.empty()) + std::size_t(!parts.points.times.empty());
+  const std::size_t columns = 3 + std::size_t(tree.points().columns().count());
   const std::size_t image = clearing ? clearing->image.storage.size() * sizeof(double) : 0;
   // room for it all at once: the points are most of it, and growing would copy them
-  out.bytes().reserve(1024 + 5 * parts.nodes.size() + 4 * columns * parts.points.x.size() + image);
+  out.bytes().reserve(1024 + 5 * layout.nodes.size() + 4 * columns * layout.point_count + image);
   out.put_bytes(kMagic);
   out.put(tree.config().region.shape == RegionShape::Cube ? kMapFileVersion : kMapFileVersionSizedRegion);
   out.put(std::uint64_t(0));  // the payload's length, once known
   put_config(out, tree.config());
   put_motion(out, tree.motion());
-  put_tree(out, parts);
+  put_tree(out, layout);
   if (tree.config().clearing.enabled) put_clearing(out, *clearing, tree);
   std::string& bytes = out.bytes();
   const std::uint64_t payload = bytes.size() - kHeaderBytes;

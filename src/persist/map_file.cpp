@@ -1,6 +1,7 @@
 #include "persist/map_file.hpp"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -27,24 +28,30 @@ struct Descriptor {
 
 }  // namespace
 
+FileBytes::FileBytes(FileBytes&& other) noexcept
+    : data_(std::exchange(other.data_, nullptr)), size_(std::exchange(other.size_, 0)) {}
+
+FileBytes& FileBytes::operator=(FileBytes&& other) noexcept {
+  std::swap(data_, other.data_);
+  std::swap(size_, other.size_);
+  return *this;
+}
+
+FileBytes::~FileBytes() {
+  if (size_ > 0) ::munmap(const_cast<void*>(data_), size_);  // NOLINT: mapped read-only by us
+}
+
 FileBytes read_whole_file(const std::string& path) {
   Descriptor file{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
   if (file.fd < 0) fail(path, "cannot open", errno);
   struct stat info {};
   if (::fstat(file.fd, &info) != 0) fail(path, "cannot read", errno);
   if (!S_ISREG(info.st_mode)) throw std::runtime_error(path + ": not a regular file");
-  FileBytes bytes;
-  bytes.data.reset(new char[std::size_t(info.st_size)]);  // not cleared: read() fills it
-  std::size_t done = 0;
-  while (done < std::size_t(info.st_size)) {
-    const ssize_t n = ::read(file.fd, bytes.data.get() + done, std::size_t(info.st_size) - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) fail(path, "cannot read", errno);
-    if (n == 0) break;  // the file shrank while read: what there is
-    done += std::size_t(n);
-  }
-  bytes.size = done;
-  return bytes;
+  const auto size = std::size_t(info.st_size);
+  if (size == 0) return {};  // nothing to map (and mmap refuses a length of 0)
+  void* data = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, file.fd, 0);
+  if (data == MAP_FAILED) fail(path, "cannot read", errno);
+  return {data, size};
 }
 
 void write_replacing(const std::string& path, std::string_view bytes) {

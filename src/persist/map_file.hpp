@@ -3,17 +3,29 @@
 // the path as it was.
 
 #include <cstddef>
-#include <memory>
 #include <string>
 #include <string_view>
 
 namespace eco::detail {
 
-/// A file's bytes, read into memory that was not cleared first (a map file is read once, whole).
-struct FileBytes {
-  std::unique_ptr<char[]> data;
-  std::size_t size = 0;
-  [[nodiscard]] std::string_view view() const { return {data.get(), size}; }
+/// A file's bytes, mapped read-only: the system's cached pages of the file itself, neither copied
+/// nor faulted in one at a time. A map file is only ever replaced whole (write_replacing), so the
+/// bytes stay those of the file opened; one cut short in place by another program while mapped
+/// would end the process with SIGBUS.
+class FileBytes {
+ public:
+  FileBytes() = default;
+  FileBytes(const void* data, std::size_t size) : data_(data), size_(size) {}
+  FileBytes(FileBytes&& other) noexcept;
+  FileBytes& operator=(FileBytes&& other) noexcept;
+  FileBytes(const FileBytes&) = delete;
+  FileBytes& operator=(const FileBytes&) = delete;
+  ~FileBytes();
+  [[nodiscard]] std::string_view view() const { return {static_cast<const char*>(data_), size_}; }
+
+ private:
+  const void* data_ = nullptr;
+  std::size_t size_ = 0;
 };
 
 /// The bytes of the file at `path`. Throws std::runtime_error naming the path and the reason.

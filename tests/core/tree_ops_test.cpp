@@ -68,20 +68,54 @@ class TreeOpsTest : public ::testing::Test {
   Points inserted_;
 };
 
+/// A tree's layout written out as a file's coordinate columns (the tree keeps no other), and the
+/// parts that read them.
+struct FileColumns {
+  std::vector<float> x, y, z;
+  explicit FileColumns(const TreeLayout& layout) {
+    for (const PointSpan& leaf : layout.leaves) {
+      EXPECT_EQ(leaf.stamps, nullptr);
+      EXPECT_EQ(leaf.ids, nullptr);
+      EXPECT_EQ(leaf.intensities, nullptr);
+      EXPECT_EQ(leaf.times, nullptr);
+      if (leaf.size == 0) continue;
+      x.insert(x.end(), leaf.x, leaf.x + leaf.size);
+      y.insert(y.end(), leaf.y, leaf.y + leaf.size);
+      z.insert(z.end(), leaf.z, leaf.z + leaf.size);
+    }
+  }
+  [[nodiscard]] TreeParts parts_of(const TreeLayout& layout) const {
+    TreeParts parts{layout.motion, layout.nodes, x.size(), {}};
+    parts.points.x = reinterpret_cast<const std::byte*>(x.data());
+    parts.points.y = reinterpret_cast<const std::byte*>(y.data());
+    parts.points.z = reinterpret_cast<const std::byte*>(z.data());
+    return parts;
+  }
+};
+
 /// A tree taken apart and put back is the same tree; a point moved past its leaf's cell (by the
 /// float just past a wall), out of the box, or made NaN is refused naming its leaf.
 TEST_F(TreeOpsTest, PartsPutBackMakeTheSameTreeAndAStrayPointIsRefused) {
   Config config;
   config.leaf_capacity = 8;
   fill(config, 3000);
-  const TreeParts parts = parts_of(*tree_);
-  const Tree again(config, parts);
+  const TreeLayout layout = layout_of(*tree_);
+  const FileColumns columns(layout);
+  ASSERT_EQ(columns.x.size(), tree_->size());
+  const Tree again(config, columns.parts_of(layout));
   EXPECT_EQ(check_tree(again), "");
   ASSERT_EQ(again.size(), tree_->size());
-  const TreeParts back = parts_of(again);
-  EXPECT_EQ(back.points.x, parts.points.x);
-  EXPECT_EQ(back.points.y, parts.points.y);
-  EXPECT_EQ(back.points.z, parts.points.z);
+  const TreeLayout back = layout_of(again);
+  const FileColumns back_columns(back);
+  EXPECT_EQ(back_columns.x, columns.x);
+  EXPECT_EQ(back_columns.y, columns.y);
+  EXPECT_EQ(back_columns.z, columns.z);
+  ASSERT_EQ(back.nodes.size(), layout.nodes.size());
+  for (std::size_t i = 0; i < layout.nodes.size(); ++i) {
+    EXPECT_EQ(back.nodes[i].leaf, layout.nodes[i].leaf);
+    EXPECT_EQ(back.nodes[i].children, layout.nodes[i].children);
+    EXPECT_EQ(back.nodes[i].count, layout.nodes[i].count);
+  }
   // the first leaf's cell, found by walking the pre-order entries to it
   const Cell root = tree_->root_cell();
   Cell cell = root;
@@ -104,10 +138,10 @@ TEST_F(TreeOpsTest, PartsPutBackMakeTheSameTreeAndAStrayPointIsRefused) {
   if (double(below_lower) >= lower) below_lower = std::nextafter(below_lower, -std::numeric_limits<float>::infinity());
   for (const float stray : {at_upper, below_lower,
                             std::numeric_limits<float>::quiet_NaN(), float(tree_->motion().box.hi[0]) + 1.0f}) {
-    TreeParts bad = parts;
-    bad.points.x[0] = stray;
+    FileColumns bad = columns;
+    bad.x[0] = stray;
     try {
-      (void)Tree(config, bad);
+      (void)Tree(config, bad.parts_of(layout));
       ADD_FAILURE() << "a point at x = " << stray << " was taken";
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find("lies outside its leaf's cell or the ego box"), std::string::npos)

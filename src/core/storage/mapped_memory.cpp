@@ -25,6 +25,8 @@ bool mapped(std::size_t bytes) { return kMaps && bytes >= kMappedFrom; }
 
 bool allocations_are_mapped() { return kMaps; }
 
+bool comes_zeroed(std::size_t bytes) { return mapped(bytes); }
+
 void* allocate_bytes(std::size_t bytes) {
   if (!mapped(bytes)) return ::operator new(bytes);
   void* memory = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);

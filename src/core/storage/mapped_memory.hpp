@@ -22,6 +22,8 @@ inline constexpr std::size_t kMappedFrom = std::size_t{1} << 12;
 /// Whether allocations from kMappedFrom on are mapped (not under AddressSanitizer).
 [[nodiscard]] bool allocations_are_mapped();
 
+/// Whether allocate_bytes(bytes) hands out zeroed memory (a fresh mapping's).
+[[nodiscard]] bool comes_zeroed(std::size_t bytes);
 /// `bytes` (> 0) of memory: mapped pages from kMappedFrom on, else the heap's. Throws
 /// std::bad_alloc when there is none.
 [[nodiscard]] void* allocate_bytes(std::size_t bytes);

@@ -74,6 +74,18 @@ struct PointSpan {
   }
 };
 
+/// Columns of 4-byte values in the machine's order, read where they lie at any alignment (a map
+/// file's bytes): x, y, z, then the kept columns as in PointSpan; null when not there.
+struct ColumnBytes {
+  const std::byte* x = nullptr;
+  const std::byte* y = nullptr;
+  const std::byte* z = nullptr;
+  const std::byte* stamps = nullptr;
+  const std::byte* ids = nullptr;
+  const std::byte* intensities = nullptr;
+  const std::byte* times = nullptr;
+};
+
 class PointStore {
  public:
   explicit PointStore(Columns columns = {}, std::shared_ptr<PageLedger> ledger = std::make_shared<PageLedger>())
@@ -138,11 +150,14 @@ class PointStore {
       for (std::uint32_t i = 0; i < n; ++i) to[i] = from[picked[i]];
     });
   }
-  /// Appends every point of `source` (read elsewhere, with every column this store keeps) to the
-  /// block at `link`, as append() does.
-  void append_span(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const PointSpan& source) {
-    append_columns(link, owner, count, source, source.size, 0,
-                   [&](auto* to, const auto* from) { std::copy_n(from, source.size, to); });
+  /// Appends values [first, first + n) of each of `source`'s columns (the columns this store
+  /// keeps, and only those) to the block at `link`, as append() does.
+  void append_bytes(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const ColumnBytes& source,
+                    std::size_t first, std::uint32_t n) {
+    append_columns(link, owner, count, source, n, 0, [&](auto* to, const std::byte* from) {
+      static_assert(sizeof(*to) == 4);
+      std::memcpy(to, from + first * 4, std::size_t(n) * 4);
+    });
   }
 
   /// The `count` points of the block at `link`.
@@ -354,10 +369,11 @@ class PointStore {
     b.times = next(columns_.times, b.times);
     return b;
   }
-  /// append_picked's and append_span's common part: makes room for `n` more points and calls
-  /// copy(to, from) for each column `source` has, `to` the block's column past its `count` points.
-  template <class Copy>
-  void append_columns(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const PointSpan& source,
+  /// append_picked's and append_bytes's common part: makes room for `n` more points and calls
+  /// copy(to, from) for each column `source` (a PointSpan or ColumnBytes) has, `to` the block's
+  /// column past its `count` points.
+  template <class Source, class Copy>
+  void append_columns(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const Source& source,
                       std::uint32_t n, std::uint32_t room, Copy&& copy) {
     if (n == 0) return;
     reserve(link, owner, count, count + n, room);

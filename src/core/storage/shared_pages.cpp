@@ -8,16 +8,21 @@
 namespace eco::detail {
 namespace {
 
-PageHeader* new_page(std::size_t bytes, PageLedger* ledger) {
+/// A page of `bytes`: a spare one, or one just mapped, which the system hands out zeroed.
+struct NewPage {
+  PageHeader* page;
+  bool zeroed;
+};
+NewPage new_page(std::size_t bytes, PageLedger* ledger) {
   if (PageHeader* spare = ledger->take_spare(bytes)) {
     spare->holders.store(1, std::memory_order_relaxed);
-    return spare;
+    return {spare, false};
   }
   auto* page = new (allocate_bytes(bytes)) PageHeader;
   page->bytes = std::uint32_t(bytes);
   page->ledger = ledger;
   ledger->bytes.fetch_add(bytes, std::memory_order_relaxed);
-  return page;
+  return {page, comes_zeroed(bytes)};
 }
 
 }  // namespace
@@ -59,8 +64,8 @@ PageTable::~PageTable() {
 }
 
 void PageTable::push_back() {
-  PageHeader* page = new_page(page_bytes_, ledger_.get());
-  std::memset(items(page), 0, page_bytes_ - kPageHeaderBytes);
+  const auto [page, zeroed] = new_page(page_bytes_, ledger_.get());
+  if (!zeroed) std::memset(items(page), 0, page_bytes_ - kPageHeaderBytes);  // a fresh mapping's are
   pages_.push_back(page);
   shared_.push_back(0);
   count_live(1);
@@ -140,7 +145,7 @@ void PageTable::unshare(std::size_t i) {
   PageHeader* page = pages_[i];
   // acquire: a holder that let go finished reading before this table writes in place
   if (page->holders.load(std::memory_order_acquire) == 1) return;
-  PageHeader* copy = new_page(page_bytes_, ledger_.get());
+  PageHeader* copy = new_page(page_bytes_, ledger_.get()).page;
   std::memcpy(items(copy), items(page), page_bytes_ - kPageHeaderBytes);
   pages_[i] = copy;
   replaced_.push_back(page);
