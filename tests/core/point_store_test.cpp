@@ -177,6 +177,37 @@ TEST(PointStore, ReleasedBlocksAreReusedBeforeThePoolsGrow) {
   }
 }
 
+TEST(PointStore, WhileASnapshotHoldsThePagesTakesFillThePageWithTheMostFreeBlocksFirst) {
+  auto ledger = std::make_shared<PageLedger>();
+  PointStore store(Columns{}, ledger);
+  const std::vector<BarePoint> two{{{1.0f, 2.0f, 3.0f}}, {{4.0f, 5.0f, 6.0f}}};
+  std::vector<std::uint32_t> links(8 * 1024, kNone);  // blocks of one size class, in order: a page holds at most 512
+  for (std::size_t i = 0; i < links.size(); ++i) store.append(links[i], std::uint32_t(i), 0, two.data(), two.data() + 2);
+  for (std::size_t i = 0; i < 40; ++i) store.release(links[i]);  // 40 free on the first page
+  for (std::size_t k = 1; k < 8; ++k) store.release(links[1024 * k + 500]);  // then one on each of 7 others
+  const PointStore snapshot = store.share();
+  ASSERT_EQ(ledger->snapshot_bytes(), 0u);
+
+  std::vector<std::uint32_t> fresh(40, kNone);
+  store.append(fresh[0], 0, 0, two.data(), two.data() + 2);
+  const std::size_t one_page = ledger->snapshot_bytes();  // the first page, copied for the snapshot
+  EXPECT_GT(one_page, 0u);
+  for (std::size_t i = 1; i < fresh.size(); ++i) store.append(fresh[i], 0, 0, two.data(), two.data() + 2);
+  EXPECT_EQ(ledger->snapshot_bytes(), one_page) << "40 blocks from the page with 40 free: one copy";
+
+  // a block let go of on that page, now the tree's own, is taken again before the other pages' free blocks
+  const std::uint32_t again = fresh[7];
+  store.release(fresh[7]);
+  store.append(fresh[7], 0, 0, two.data(), two.data() + 2);
+  EXPECT_EQ(fresh[7], again);
+  EXPECT_EQ(ledger->snapshot_bytes(), one_page);
+
+  for (std::size_t i = 0; i < links.size(); ++i) {  // what the snapshot reads is as it was
+    if (links[i] == kNone) continue;
+    ASSERT_TRUE(same(contents(snapshot, links[i], 2), {as_stored(two[0]), as_stored(two[1])})) << i;
+  }
+}
+
 TEST(PointStore, ABlockGivenRoomTakesThatManyPointsWithoutMoving) {
   std::vector<StoredPoint> points(128);
   for (std::uint32_t i = 0; i < points.size(); ++i) points[i] = {{float(i), 0.5f, -float(i)}, 0, i, 0.0f, 0.0f};

@@ -101,6 +101,7 @@ class PointStore {
       const Pool& from = pools_[c];
       std::tie(to.block_bytes, to.per_page_shift, to.used) = std::tie(from.block_bytes, from.per_page_shift, from.used);
       to.pages = pools_[c].pages.share();
+      pools_[c].shared = pools_[c].reorder = true;
     }
     return copy;
   }
@@ -216,14 +217,17 @@ class PointStore {
   void release(std::uint32_t& link) {
     if (link == kNone) return;
     // the owner named in the block is left as it was: compact() asks whether it still holds it
-    pools_[std::size_t(class_of(link))].free.push_back(index_of(link));
+    Pool& p = pools_[std::size_t(class_of(link))];
+    (p.shared ? p.released : p.free).push_back(index_of(link));
     link = kNone;
   }
 
   [[nodiscard]] const Columns& columns() const { return columns_; }
   [[nodiscard]] std::size_t bytes() const {
     std::size_t total = pools_.capacity() * sizeof(Pool);
-    for (const Pool& p : pools_) total += p.pages.bytes() + p.free.capacity() * sizeof(std::uint32_t);
+    for (const Pool& p : pools_) {
+      total += p.pages.bytes() + (p.free.capacity() + p.released.capacity()) * sizeof(std::uint32_t);
+    }
     return total;
   }
 
@@ -237,7 +241,7 @@ class PointStore {
   /// Bytes of the blocks the pools hold free (compact() gives most of them back).
   [[nodiscard]] std::size_t free_bytes() const {
     std::size_t total = 0;
-    for (const Pool& p : pools_) total += p.free.size() * p.block_bytes;
+    for (const Pool& p : pools_) total += (p.free.size() + p.released.size()) * p.block_bytes;
     return total;
   }
 
@@ -252,6 +256,7 @@ class PointStore {
     std::size_t done = 0;
     for (std::size_t c = 0; c < pools_.size(); ++c) {
       Pool& p = pools_[c];
+      take_released(p);
       while (p.used > 0 && done < budget) {
         const std::uint32_t top = p.used - 1;
         const std::uint32_t from_link = std::uint32_t(c) << kIndexBits | top;
@@ -313,6 +318,13 @@ class PointStore {
     PageTable pages;  // of whole pages of the system's
     std::uint32_t used = 0;  // blocks handed out so far, free or not
     MappedVector<std::uint32_t> free;
+    // Once a snapshot has shared the pages: the blocks let go of since it did. A take reuses one
+    // first where its page is already the tree's own again, else after every free block: reusing
+    // a block on a page a snapshot holds copies the whole page. share() has them joined to
+    // `free` and the whole reordered before the next take (order_free()).
+    bool shared = false;
+    bool reorder = false;
+    MappedVector<std::uint32_t> released;
   };
   struct Block {
     float* x;
@@ -444,10 +456,17 @@ class PointStore {
       while (wasteful(page()) && page() < kMostPageBytes) ++p.per_page_shift;
       p.pages = PageTable(mapped(page()), ledger_);
     }
+    if (std::exchange(p.reorder, false)) order_free(p);
     std::uint32_t i;
-    if (!p.free.empty()) {
+    if (!p.released.empty() && !p.pages.copies_on_write(p.released.back() >> p.per_page_shift)) {
+      i = p.released.back();
+      p.released.pop_back();
+    } else if (!p.free.empty()) {
       i = p.free.back();
       p.free.pop_back();
+    } else if (!p.released.empty()) {
+      i = p.released.back();
+      p.released.pop_back();
     } else {
       if (p.used > kIndexMask) throw std::length_error("eco: too many point blocks of one size");
       if ((p.used >> p.per_page_shift) == p.pages.size()) p.pages.push_back();
@@ -456,6 +475,24 @@ class PointStore {
     const std::uint32_t link = std::uint32_t(c) << kIndexBits | i;
     std::memcpy(writable(link), &owner, sizeof owner);  // in the block's first line, written next anyway
     return link;
+  }
+
+  /// Moves the released blocks to the free list.
+  static void take_released(Pool& p) {
+    p.free.insert(p.free.end(), p.released.begin(), p.released.end());
+    p.released.clear();
+  }
+  /// Orders the free blocks, released ones among them, so that the next takes come first from the
+  /// page with the most of them, then the next: while a snapshot holds the pages, each page a
+  /// take writes is copied once, for as many blocks as it has free.
+  static void order_free(Pool& p) {
+    take_released(p);
+    MappedVector<std::uint32_t> free_in_page(p.pages.size());
+    for (std::uint32_t i : p.free) ++free_in_page[i >> p.per_page_shift];
+    std::sort(p.free.begin(), p.free.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const std::uint32_t fa = free_in_page[a >> p.per_page_shift], fb = free_in_page[b >> p.per_page_shift];
+      return fa != fb ? fa < fb : a < b;
+    });
   }
 
   Columns columns_;

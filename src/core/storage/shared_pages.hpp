@@ -88,6 +88,10 @@ class PageTable {
     if (shared_[i]) unshare(i);
     return items(pages_[i]);
   }
+  /// Whether write(i) would copy page `i` (a snapshot still holds it).
+  [[nodiscard]] bool copies_on_write(std::size_t i) const {
+    return shared_[i] != 0 && pages_[i]->holders.load(std::memory_order_acquire) > 1;
+  }
   /// Appends a fresh, zeroed page.
   void push_back();
   /// Lets go of the pages from `n` on.

@@ -1,9 +1,9 @@
 #include "io/ros/mcap_store.hpp"
 
+#include "bytes/checksum.hpp"
 #include "io/ros/byte_reader.hpp"
 
 #include <lz4frame.h>
-#include <zlib.h>
 #include <zstd.h>
 
 #include <algorithm>
@@ -19,13 +19,8 @@ enum Op : std::uint8_t { Header = 1, Footer = 2, Schema = 3, ChannelOp = 4, Mess
 constexpr std::uint64_t kMaxRecord = std::uint64_t(4) << 30;  // 4 GiB: past it a length is damage, not data
 constexpr std::uint64_t kMaxChunk = std::uint64_t(1) << 30;   // writers make chunks of a few MB
 
-std::uint32_t crc32_of(std::span<const std::uint8_t> bytes) {
-  uLong crc = crc32(0L, Z_NULL, 0);
-  for (std::size_t at = 0; at < bytes.size(); at += std::size_t{1} << 30) {
-    const std::size_t n = std::min(bytes.size() - at, std::size_t{1} << 30);
-    crc = crc32(crc, bytes.data() + at, uInt(n));
-  }
-  return std::uint32_t(crc);
+std::uint32_t crc32_of(std::span<const std::uint8_t> bytes) {  // MCAP's CRC is zlib's
+  return eco::detail::checksum({reinterpret_cast<const char*>(bytes.data()), bytes.size()});
 }
 
 void decompress_lz4(std::span<const std::uint8_t> in, std::vector<std::uint8_t>& out, const ByteReader& where) {
