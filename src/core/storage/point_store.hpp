@@ -105,6 +105,15 @@ class PointStore {
     }
     return copy;
   }
+  /// Once no snapshot is left: blocks are reused as they were before share(), last let go of first.
+  void end_sharing() {
+    for (Pool& p : pools_) {
+      if (!p.shared) continue;
+      take_released(p);
+      p.released = {};
+      p.shared = p.reorder = false;
+    }
+  }
   /// Lets go of the pages a write copied (core/storage/shared_pages.hpp); returns their bytes.
   std::size_t release_replaced() {
     std::size_t bytes = 0;

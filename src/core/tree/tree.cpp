@@ -87,7 +87,10 @@ void Tree::give_back_memory(std::size_t floor) {
   compact_points(floor);
   // what this update copied, the next will likely copy again: that much is kept spare
   s_.ledger->trim_spare(s_.points.release_replaced());
-  if (s_.ledger->snapshots.load() == 0) (void)shelf_->take();  // no snapshot to copy nodes for soon
+  if (s_.ledger->snapshots.load() == 0) {  // no snapshot to copy nodes or pages for soon
+    (void)shelf_->take();
+    s_.points.end_sharing();
+  }
 }
 
 void Tree::compact_points(std::size_t floor) {
