@@ -2,6 +2,7 @@
 
 #include "core/tree/tree_parts.hpp"
 
+#include "core/geometry/subcells.hpp"
 #include "core/tree/invariants.hpp"
 #include "core/tree/tree.hpp"
 #include "core/tree/tree_repair.hpp"
@@ -106,14 +107,16 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
                std::to_string(next_point + entry.count - 1) + " lies outside its leaf's cell or the ego box");
       }
       next_point += entry.count;
+      const bool marks = s_.keeps_subcells && entry.count > 0;
+      TreeRepair(s_).fit_leaf(id, marks ? Subcells(s_.lattice, cell) : Subcells(), bounds);
     } else {
       if (cell.depth >= s_.lattice.max_depth) refuse("node " + std::to_string(index) + ": an inner node at the deepest level");
       s_.nodes.make_inner(id);
       for (int o = 0; o < 8; ++o) {
         if (entry.children >> o & 1) s_.nodes.edit_child(id, o) = self(self, id, o, s_.lattice.child(cell, o));
       }
+      TreeRepair(s_).refit(id);
     }
-    TreeRepair(s_).refit(id);
     if (parent != kNone && s_.nodes[id].count == 0) refuse("node " + std::to_string(index) + ": an empty node");
     if (!entry.leaf && parent != kNone && cell.depth >= s_.min_leaf_depth && s_.nodes[id].count <= s_.config.leaf_capacity) {
       refuse("node " + std::to_string(index) + ": an inner node of " + std::to_string(s_.nodes[id].count) +

@@ -91,12 +91,16 @@ void TreeRepair::refit(std::uint32_t id) {
   fitted.oldest = oldest;
 }
 
-void TreeRepair::fit_leaf(std::uint32_t id, const Subcells& quarters) {
+void TreeRepair::fit_leaf(std::uint32_t id, const Subcells& quarters, const std::optional<Aabb>& known) {
   Node& n = t_.nodes.edit(id);
   const PointSpan s = t_.points.span(n.link, n.count);
   // column by column, each loop vector code; the age keys read only where a column holds them
   Aabb bounds;
-  for (std::uint32_t i = 0; i < n.count; ++i) bounds.grow(s.x[i], s.y[i], s.z[i]);
+  if (known) {
+    bounds = *known;
+  } else {
+    for (std::uint32_t i = 0; i < n.count; ++i) bounds.grow(s.x[i], s.y[i], s.z[i]);
+  }
   const bool aged = s.stamps != nullptr || s.times != nullptr;
   std::uint32_t oldest = n.count > 0 && !aged ? t_.age.key(StoredPoint{}) : kNone;
   if (aged) {

@@ -10,6 +10,7 @@
 #include <eco/types.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -23,8 +24,9 @@ class TreeRepair {
 
   /// Recomputes count, bounds and oldest stamp of `id` from its points or children.
   void refit(std::uint32_t id);
-  /// The same for leaf `id`, whose cell's subcells are `quarters` (kept in Quantised mode).
-  void fit_leaf(std::uint32_t id, const Subcells& quarters);
+  /// The same for leaf `id`, whose cell's subcells are `quarters` (kept in Quantised mode), and
+  /// whose points' bounds are `bounds` where the caller has them already.
+  void fit_leaf(std::uint32_t id, const Subcells& quarters, const std::optional<Aabb>& bounds = std::nullopt);
   /// Releases the subtree at `id` (and the node itself; the root leaves the tree without one);
   /// appends its points to `out` if given.
   void dissolve(std::uint32_t id, std::vector<StoredPoint>* out);
