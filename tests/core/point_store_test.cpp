@@ -162,6 +162,31 @@ TEST(PointStore, EachKeptColumnCostsFourBytesAPoint) {
   }
 }
 
+TEST(BlocksPerPage, FindsTheSamePageAsADivisionForEveryBlockIndex) {
+  std::mt19937 rng(3);
+  for (std::uint32_t count = 1; count <= 1200; ++count) {
+    const BlocksPerPage per_page(count);
+    for (std::uint32_t i = 0; i < 4 * count + 64; ++i) ASSERT_EQ(per_page.page_of(i), i / count) << i << " / " << count;
+    for (int k = 0; k < 2000; ++k) {
+      const std::uint32_t i = std::uint32_t(rng());  // over the whole range, far past 2^26 links
+      ASSERT_EQ(per_page.page_of(i), i / count) << i << " / " << count;
+    }
+    ASSERT_EQ(per_page.page_of(0xFFFFFFFFu), 0xFFFFFFFFu / count) << count;
+  }
+}
+
+TEST(PointStore, ASparsePoolCostsOneSmallPageNotAPageOfPowerOfTwoBlocks) {
+  PointStore store;  // a leaf in each of the first 18 size classes (2 to 128 points)
+  std::vector<BarePoint> points(128);
+  std::vector<std::uint32_t> links(18, kNone);
+  for (int c = 0; c < 18; ++c) {
+    store.append(links[std::size_t(c)], 0, 0, points.data(), points.data() + PointStore::capacity_of(c));
+  }
+  // each pool's page: the fewest 4 KiB pages that hold a block with at most an eighth left over
+  // (8 KiB for 128 points' 1540 B); pages of 2^k blocks took 20-28 KiB for most of them
+  EXPECT_LE(store.bytes(), 18 * std::size_t{8192} + 4096);
+}
+
 TEST(PointStore, ReleasedBlocksAreReusedBeforeThePoolsGrow) {
   PointStore store(Columns{true, true, true, true});
   std::vector<StoredPoint> batch(50);
@@ -181,7 +206,7 @@ TEST(PointStore, WhileASnapshotHoldsThePagesTakesFillThePageWithTheMostFreeBlock
   auto ledger = std::make_shared<PageLedger>();
   PointStore store(Columns{}, ledger);
   const std::vector<BarePoint> two{{{1.0f, 2.0f, 3.0f}}, {{4.0f, 5.0f, 6.0f}}};
-  std::vector<std::uint32_t> links(8 * 1024, kNone);  // blocks of one size class, in order: a page holds at most 512
+  std::vector<std::uint32_t> links(8 * 1024, kNone);  // blocks of one size class, in order: a page holds a few hundred
   for (std::size_t i = 0; i < links.size(); ++i) store.append(links[i], std::uint32_t(i), 0, two.data(), two.data() + 2);
   for (std::size_t i = 0; i < 40; ++i) store.release(links[i]);  // 40 free on the first page
   for (std::size_t k = 1; k < 8; ++k) store.release(links[1024 * k + 500]);  // then one on each of 7 others

@@ -86,6 +86,24 @@ struct ColumnBytes {
   const std::byte* times = nullptr;
 };
 
+/// How many blocks a pool's page holds, and which page block i lies on: i / count by a multiply
+/// and a shift (a leaf's block is found on every read; a division would cost several times more).
+/// Exact for every i < 2^32: the reciprocal, rounded up, is over 2^63 / count by at most
+/// count / 2^63, which moves no quotient below 2^63 / count.
+class BlocksPerPage {
+ public:
+  BlocksPerPage() = default;
+  explicit BlocksPerPage(std::uint32_t blocks)
+      : count(blocks), reciprocal_(std::uint64_t((static_cast<unsigned __int128>(1) << 63) / blocks) + 1) {}
+  [[nodiscard]] std::uint32_t page_of(std::uint32_t i) const {
+    return std::uint32_t((static_cast<unsigned __int128>(i) * reciprocal_) >> 63);
+  }
+  std::uint32_t count = 1;
+
+ private:
+  std::uint64_t reciprocal_ = std::uint64_t{1} << 63;
+};
+
 class PointStore {
  public:
   explicit PointStore(Columns columns = {}, std::shared_ptr<PageLedger> ledger = std::make_shared<PageLedger>())
@@ -99,7 +117,7 @@ class PointStore {
     for (std::size_t c = 0; c < pools_.size(); ++c) {
       Pool& to = copy.pools_[c];
       const Pool& from = pools_[c];
-      std::tie(to.block_bytes, to.per_page_shift, to.used) = std::tie(from.block_bytes, from.per_page_shift, from.used);
+      std::tie(to.block_bytes, to.per_page, to.used) = std::tie(from.block_bytes, from.per_page, from.used);
       to.pages = pools_[c].pages.share();
       pools_[c].shared = pools_[c].reorder = true;
     }
@@ -286,7 +304,7 @@ class PointStore {
         done += p.block_bytes;
       }
       std::erase_if(p.free, [&](std::uint32_t i) { return i >= p.used; });
-      const std::size_t pages = (std::size_t(p.used) + (std::size_t{1} << p.per_page_shift) - 1) >> p.per_page_shift;
+      const std::size_t pages = (std::size_t(p.used) + p.per_page.count - 1) / p.per_page.count;
       p.pages.resize_down(pages);  // the emptied pages go back
       if (4 * p.free.size() < p.free.capacity()) p.free.shrink_to_fit();
     }
@@ -323,7 +341,7 @@ class PointStore {
 
   struct Pool {
     std::size_t block_bytes = 0;
-    std::uint32_t per_page_shift = 0;  // blocks per page = 2^shift
+    BlocksPerPage per_page;
     PageTable pages;  // of whole pages of the system's
     std::uint32_t used = 0;  // blocks handed out so far, free or not
     MappedVector<std::uint32_t> free;
@@ -353,13 +371,15 @@ class PointStore {
   [[nodiscard]] const std::byte* address(std::uint32_t link) const {
     const Pool& p = pools_[std::size_t(class_of(link))];
     const std::uint32_t i = index_of(link);
-    return p.pages.read(i >> p.per_page_shift) + (i & ((1u << p.per_page_shift) - 1)) * p.block_bytes;
+    const std::uint32_t page = p.per_page.page_of(i);
+    return p.pages.read(page) + (i - page * p.per_page.count) * p.block_bytes;
   }
   /// The same to write (its page copied first while a snapshot holds it).
   [[nodiscard]] std::byte* writable(std::uint32_t link) {
     Pool& p = pools_[std::size_t(class_of(link))];
     const std::uint32_t i = index_of(link);
-    return p.pages.write(i >> p.per_page_shift) + (i & ((1u << p.per_page_shift) - 1)) * p.block_bytes;
+    const std::uint32_t page = p.per_page.page_of(i);
+    return p.pages.write(page) + (i - page * p.per_page.count) * p.block_bytes;
   }
   /// The block at `link`, to read only.
   [[nodiscard]] Block block(std::uint32_t link) const {
@@ -456,18 +476,18 @@ class PointStore {
     Pool& p = pools_[std::size_t(c)];
     if (p.block_bytes == 0) {
       p.block_bytes = kOwnerBytes + std::size_t(capacity_of(c)) * std::size_t(3 + columns_.count()) * sizeof(float);
-      while (kPageHeaderBytes + (p.block_bytes << (p.per_page_shift + 1)) <= kPageBytes) ++p.per_page_shift;
-      // a page is mapped in whole pages of the system's (core/storage/mapped_memory.hpp): more blocks a
-      // page until at most an eighth of it is left over, or it spans kMostPageBytes
-      const auto mapped = [](std::size_t bytes) { return (bytes + kPageBytes - 1) / kPageBytes * kPageBytes; };
-      const auto wasteful = [&](std::size_t bytes) { return 8 * (mapped(bytes) - bytes) > mapped(bytes); };
-      const auto page = [&] { return kPageHeaderBytes + (p.block_bytes << p.per_page_shift); };
-      while (wasteful(page()) && page() < kMostPageBytes) ++p.per_page_shift;
-      p.pages = PageTable(mapped(page()), ledger_);
+      // a page is mapped in whole pages of the system's (core/storage/mapped_memory.hpp): the
+      // fewest of them that hold at least one block with at most an eighth left over, or
+      // kMostPageBytes; a sparse pool pays for one such page, not for a page of 2^k blocks
+      const auto left_over = [&](std::size_t page) { return (page - kPageHeaderBytes) % p.block_bytes; };
+      std::size_t page = (kPageHeaderBytes + p.block_bytes + kPageBytes - 1) / kPageBytes * kPageBytes;
+      while (8 * left_over(page) > page && page < kMostPageBytes) page += kPageBytes;
+      p.per_page = BlocksPerPage(std::uint32_t((page - kPageHeaderBytes) / p.block_bytes));
+      p.pages = PageTable(page, ledger_);
     }
     if (std::exchange(p.reorder, false)) order_free(p);
     std::uint32_t i;
-    if (!p.released.empty() && !p.pages.copies_on_write(p.released.back() >> p.per_page_shift)) {
+    if (!p.released.empty() && !p.pages.copies_on_write(p.per_page.page_of(p.released.back()))) {
       i = p.released.back();
       p.released.pop_back();
     } else if (!p.free.empty()) {
@@ -478,7 +498,7 @@ class PointStore {
       p.released.pop_back();
     } else {
       if (p.used > kIndexMask) throw std::length_error("eco: too many point blocks of one size");
-      if ((p.used >> p.per_page_shift) == p.pages.size()) p.pages.push_back();
+      if (p.per_page.page_of(p.used) == p.pages.size()) p.pages.push_back();
       i = p.used++;
     }
     const std::uint32_t link = std::uint32_t(c) << kIndexBits | i;
@@ -497,9 +517,9 @@ class PointStore {
   static void order_free(Pool& p) {
     take_released(p);
     MappedVector<std::uint32_t> free_in_page(p.pages.size());
-    for (std::uint32_t i : p.free) ++free_in_page[i >> p.per_page_shift];
+    for (std::uint32_t i : p.free) ++free_in_page[p.per_page.page_of(i)];
     std::sort(p.free.begin(), p.free.end(), [&](std::uint32_t a, std::uint32_t b) {
-      const std::uint32_t fa = free_in_page[a >> p.per_page_shift], fb = free_in_page[b >> p.per_page_shift];
+      const std::uint32_t fa = free_in_page[p.per_page.page_of(a)], fb = free_in_page[p.per_page.page_of(b)];
       return fa != fb ? fa < fb : a < b;
     });
   }
