@@ -21,18 +21,22 @@ constexpr bool kMaps = true;
 
 bool mapped(std::size_t bytes) { return kMaps && bytes >= kMappedFrom; }
 
+void* map_bytes(std::size_t bytes, int flags) {
+  if (!mapped(bytes)) return ::operator new(bytes);
+  void* memory = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | flags, -1, 0);
+  if (memory == MAP_FAILED) throw std::bad_alloc();
+  return memory;
+}
+
 }  // namespace
 
 bool allocations_are_mapped() { return kMaps; }
 
 bool comes_zeroed(std::size_t bytes) { return mapped(bytes); }
 
-void* allocate_bytes(std::size_t bytes) {
-  if (!mapped(bytes)) return ::operator new(bytes);
-  void* memory = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-  if (memory == MAP_FAILED) throw std::bad_alloc();
-  return memory;
-}
+void* allocate_bytes(std::size_t bytes) { return map_bytes(bytes, 0); }
+
+void* allocate_written_bytes(std::size_t bytes) { return map_bytes(bytes, MAP_POPULATE); }
 
 void release_bytes(void* memory, std::size_t bytes) noexcept {
   if (memory == nullptr) return;

@@ -27,7 +27,10 @@ inline constexpr std::size_t kMappedFrom = std::size_t{1} << 12;
 /// `bytes` (> 0) of memory: mapped pages from kMappedFrom on, else the heap's. Throws
 /// std::bad_alloc when there is none.
 [[nodiscard]] void* allocate_bytes(std::size_t bytes);
-/// Gives back what allocate_bytes(bytes) returned.
+/// The same for memory about to be written whole (a pool's page): a mapping is faulted in by the
+/// call itself, at once, rather than a 4 KiB page at a time as it is first written.
+[[nodiscard]] void* allocate_written_bytes(std::size_t bytes);
+/// Gives back what allocate_bytes(bytes) or allocate_written_bytes(bytes) returned.
 void release_bytes(void* memory, std::size_t bytes) noexcept;
 
 /// A standard allocator over allocate_bytes: for the containers the tree keeps.

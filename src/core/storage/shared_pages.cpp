@@ -18,7 +18,7 @@ NewPage new_page(std::size_t bytes, PageLedger* ledger) {
     spare->holders.store(1, std::memory_order_relaxed);
     return {spare, false};
   }
-  auto* page = new (allocate_bytes(bytes)) PageHeader;
+  auto* page = new (allocate_written_bytes(bytes)) PageHeader;
   page->bytes = std::uint32_t(bytes);
   page->ledger = ledger;
   ledger->bytes.fetch_add(bytes, std::memory_order_relaxed);
