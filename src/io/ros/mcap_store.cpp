@@ -10,6 +10,7 @@
 #include <array>
 #include <cstring>
 #include <memory>
+#include <string_view>
 
 namespace eco::io::detail {
 namespace {
@@ -18,10 +19,6 @@ constexpr std::array<std::uint8_t, 8> kMagic{0x89, 'M', 'C', 'A', 'P', 0x30, '\r
 enum Op : std::uint8_t { Header = 1, Footer = 2, Schema = 3, ChannelOp = 4, Message = 5, Chunk = 6, DataEnd = 0x0F };
 constexpr std::uint64_t kMaxRecord = std::uint64_t(4) << 30;  // 4 GiB: past it a length is damage, not data
 constexpr std::uint64_t kMaxChunk = std::uint64_t(1) << 30;   // writers make chunks of a few MB
-
-std::uint32_t crc32_of(std::span<const std::uint8_t> bytes) {  // MCAP's CRC is zlib's
-  return eco::detail::checksum({reinterpret_cast<const char*>(bytes.data()), bytes.size()});
-}
 
 void decompress_lz4(std::span<const std::uint8_t> in, std::vector<std::uint8_t>& out, const ByteReader& where) {
   LZ4F_dctx* raw = nullptr;
@@ -175,7 +172,9 @@ std::span<const std::uint8_t> McapStore::chunk_records(std::uint64_t chunk) {
   } else {
     in.fail_at(compression_at, "compression '" + compression + "' is not one of lz4, zstd or none");
   }
-  if (crc != 0 && crc32_of(chunk_) != crc) in.fail_at(compression_at, "the chunk's records fail their CRC-32");
+  const std::string_view decompressed(reinterpret_cast<const char*>(chunk_.data()), chunk_.size());
+  // MCAP's CRC-32 is zlib's, the one the library closes its own files with
+  if (crc != 0 && eco::detail::checksum(decompressed) != crc) in.fail_at(compression_at, "the chunk's records fail their CRC-32");
   cached_chunk_ = chunk;
   return chunk_;
 }
