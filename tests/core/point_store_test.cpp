@@ -202,34 +202,76 @@ TEST(PointStore, ReleasedBlocksAreReusedBeforeThePoolsGrow) {
   }
 }
 
-TEST(PointStore, WhileASnapshotHoldsThePagesTakesFillThePageWithTheMostFreeBlocksFirst) {
+/// Blocks of one size class: `n` two-point blocks, block i holding the points (i, 0, 0), (i, 1, 0).
+std::vector<std::uint32_t> two_point_blocks(PointStore& store, std::size_t n) {
+  std::vector<std::uint32_t> links(n, kNone);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::vector<BarePoint> two{{{float(i), 0.0f, 0.0f}}, {{float(i), 1.0f, 0.0f}}};
+    store.append(links[i], std::uint32_t(i), 0, two.data(), two.data() + 2);
+  }
+  return links;
+}
+
+/// Whether every block of `links` (kNone: none) reads in `store` as two_point_blocks() wrote it.
+bool reads_as_written(const PointStore& store, const std::vector<std::uint32_t>& links) {
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    if (links[i] == kNone) continue;
+    const std::vector<StoredPoint> expected{{{float(i), 0.0f, 0.0f}}, {{float(i), 1.0f, 0.0f}}};
+    if (!same(contents(store, links[i], 2), expected)) return false;
+  }
+  return true;
+}
+
+TEST(PointStore, BlocksFreeBeforeASnapshotAreWrittenWhereTheyLieWithoutACopy) {
   auto ledger = std::make_shared<PageLedger>();
   PointStore store(Columns{}, ledger);
-  const std::vector<BarePoint> two{{{1.0f, 2.0f, 3.0f}}, {{4.0f, 5.0f, 6.0f}}};
-  std::vector<std::uint32_t> links(8 * 1024, kNone);  // blocks of one size class, in order: a page holds a few hundred
-  for (std::size_t i = 0; i < links.size(); ++i) store.append(links[i], std::uint32_t(i), 0, two.data(), two.data() + 2);
-  for (std::size_t i = 0; i < 40; ++i) store.release(links[i]);  // 40 free on the first page
-  for (std::size_t k = 1; k < 8; ++k) store.release(links[1024 * k + 500]);  // then one on each of 7 others
+  std::vector<std::uint32_t> links = two_point_blocks(store, 8 * 1024);  // a page holds a few hundred
+  std::vector<std::uint32_t> read = links;  // what the snapshot holds
+  for (std::size_t k = 0; k < 8; ++k) {  // 5 free on each of 8 pages
+    for (std::size_t i = 0; i < 5; ++i) store.release(links[1024 * k + 7 * i]), read[1024 * k + 7 * i] = kNone;
+  }
   const PointStore snapshot = store.share();
-  ASSERT_EQ(ledger->snapshot_bytes(), 0u);
-
+  const std::vector<BarePoint> other{{{-1.0f, -2.0f, -3.0f}}, {{-4.0f, -5.0f, -6.0f}}};
   std::vector<std::uint32_t> fresh(40, kNone);
-  store.append(fresh[0], 0, 0, two.data(), two.data() + 2);
-  const std::size_t one_page = ledger->snapshot_bytes();  // the first page, copied for the snapshot
-  EXPECT_GT(one_page, 0u);
-  for (std::size_t i = 1; i < fresh.size(); ++i) store.append(fresh[i], 0, 0, two.data(), two.data() + 2);
-  EXPECT_EQ(ledger->snapshot_bytes(), one_page) << "40 blocks from the page with 40 free: one copy";
+  for (std::uint32_t& link : fresh) store.append(link, 0, 0, other.data(), other.data() + 2);
+  EXPECT_EQ(ledger->snapshot_bytes(), 0u) << "40 free blocks on 8 pages the snapshot holds: no page copied";
+  EXPECT_TRUE(reads_as_written(snapshot, read));
+  auto alone_ledger = std::make_shared<PageLedger>();
+  PointStore alone(Columns{}, alone_ledger);
+  (void)two_point_blocks(alone, 8 * 1024);
+  EXPECT_EQ(ledger->live_bytes.load(), alone_ledger->live_bytes.load()) << "the pools did not grow";
+}
 
-  // a block let go of on that page, now the tree's own, is taken again before the other pages' free blocks
-  const std::uint32_t again = fresh[7];
-  store.release(fresh[7]);
-  store.append(fresh[7], 0, 0, two.data(), two.data() + 2);
-  EXPECT_EQ(fresh[7], again);
-  EXPECT_EQ(ledger->snapshot_bytes(), one_page);
+TEST(PointStore, BlocksLetGoOfWhileASnapshotIsAliveWaitForItToGo) {
+  auto ledger = std::make_shared<PageLedger>();
+  PointStore store(Columns{}, ledger);
+  const std::vector<std::uint32_t> links = two_point_blocks(store, 2048);
+  std::vector<std::uint32_t> live = links;
+  auto older = std::make_unique<PointStore>(store.share());
+  for (std::size_t i = 0; i < 600; ++i) store.release(live[3 * i]);  // on every page: the snapshot reads them
+  auto younger = std::make_unique<PointStore>(store.share());
+  for (std::size_t i = 0; i < 600; ++i) store.release(live[3 * i + 1]);
 
-  for (std::size_t i = 0; i < links.size(); ++i) {  // what the snapshot reads is as it was
-    if (links[i] == kNone) continue;
-    ASSERT_TRUE(same(contents(snapshot, links[i], 2), {as_stored(two[0]), as_stored(two[1])})) << i;
+  // the younger snapshot's going frees nothing: the older one still reads every block let go of
+  younger.reset();
+  const std::vector<BarePoint> other{{{-1.0f, -2.0f, -3.0f}}, {{-4.0f, -5.0f, -6.0f}}};
+  std::vector<std::uint32_t> fresh(1200, kNone);
+  for (std::uint32_t& link : fresh) store.append(link, 0, 0, other.data(), other.data() + 2);
+  EXPECT_TRUE(reads_as_written(*older, links)) << "no block the older snapshot reads was written";
+  const std::size_t copied = ledger->snapshot_bytes();
+  EXPECT_GT(copied, 0u) << "the blocks were reused by copying their pages";
+
+  // blocks let go of before a newer snapshot are written in place once the older one goes
+  for (std::size_t i = 0; i < 500; ++i) store.release(fresh[i]);
+  const PointStore newer = store.share();
+  older.reset();
+  (void)store.release_replaced();
+  const std::size_t bytes = ledger->bytes.load();
+  std::vector<std::uint32_t> again(300, kNone);
+  for (std::uint32_t& link : again) store.append(link, 0, 0, other.data(), other.data() + 2);
+  EXPECT_EQ(ledger->bytes.load(), bytes) << "300 blocks from the 500 freed before the newer snapshot: no page copied or added";
+  for (std::size_t i = 500; i < fresh.size(); ++i) {
+    ASSERT_TRUE(same(contents(newer, fresh[i], 2), {as_stored(other[0]), as_stored(other[1])})) << i;
   }
 }
 

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
@@ -110,26 +111,30 @@ class PointStore {
       : columns_(columns), ledger_(std::move(ledger)) {}
 
   /// A store over the same pages, to be read only (a snapshot's): nothing is copied until this
-  /// store writes a page. It has no free lists.
+  /// store writes a page. It has no free lists. Blocks this store lets go of from now on stay
+  /// unwritten until the new store is gone (settle()): it may read them.
   [[nodiscard]] PointStore share() {
     PointStore copy(columns_, ledger_);
     copy.pools_.resize(pools_.size());
+    Share mark{std::make_shared<std::atomic<bool>>(true), {}};
     for (std::size_t c = 0; c < pools_.size(); ++c) {
       Pool& to = copy.pools_[c];
-      const Pool& from = pools_[c];
+      Pool& from = pools_[c];
       std::tie(to.block_bytes, to.per_page, to.used) = std::tie(from.block_bytes, from.per_page, from.used);
-      to.pages = pools_[c].pages.share();
-      pools_[c].shared = pools_[c].reorder = true;
+      to.pages = from.pages.share();
+      from.shared = true;
+      mark.released_before.push_back(std::uint32_t(from.released.size()));
     }
+    copy.held_ = SnapshotHold(mark.alive);
+    shares_.push_back(std::move(mark));
     return copy;
   }
-  /// Once no snapshot is left: blocks are reused as they were before share(), last let go of first.
+  /// Once no snapshot is left: every block let go of is free again.
   void end_sharing() {
-    for (Pool& p : pools_) {
-      if (!p.shared) continue;
-      take_released(p);
-      p.released = {};
-      p.shared = p.reorder = false;
+    shares_.clear();
+    for (std::size_t c = 0; c < pools_.size(); ++c) {
+      take_released(c, pools_[c].released.size());
+      pools_[c].shared = false;
     }
   }
   /// Lets go of the pages a write copied (core/storage/shared_pages.hpp); returns their bytes.
@@ -281,9 +286,9 @@ class PointStore {
   template <class Holds, class Relink>
   std::size_t compact(std::size_t budget, Holds&& holds, Relink&& relink) {
     std::size_t done = 0;
+    settle();
     for (std::size_t c = 0; c < pools_.size(); ++c) {
       Pool& p = pools_[c];
-      take_released(p);
       while (p.used > 0 && done < budget) {
         const std::uint32_t top = p.used - 1;
         const std::uint32_t from_link = std::uint32_t(c) << kIndexBits | top;
@@ -298,12 +303,13 @@ class PointStore {
         const std::uint32_t to = p.free.back();
         p.free.pop_back();
         const std::uint32_t to_link = std::uint32_t(c) << kIndexBits | to;
-        std::memcpy(writable(to_link), address(from_link), p.block_bytes);  // its owner too
+        std::memcpy(in_place(to_link), address(from_link), p.block_bytes);  // its owner too; a free block: no copy
         relink(owner, to_link);
         --p.used;
         done += p.block_bytes;
       }
       std::erase_if(p.free, [&](std::uint32_t i) { return i >= p.used; });
+      drop_released_from(c, p.used);
       const std::size_t pages = (std::size_t(p.used) + p.per_page.count - 1) / p.per_page.count;
       p.pages.resize_down(pages);  // the emptied pages go back
       if (4 * p.free.size() < p.free.capacity()) p.free.shrink_to_fit();
@@ -345,12 +351,11 @@ class PointStore {
     PageTable pages;  // of whole pages of the system's
     std::uint32_t used = 0;  // blocks handed out so far, free or not
     MappedVector<std::uint32_t> free;
-    // Once a snapshot has shared the pages: the blocks let go of since it did. A take reuses one
-    // first where its page is already the tree's own again, else after every free block: reusing
-    // a block on a page a snapshot holds copies the whole page. share() has them joined to
-    // `free` and the whole reordered before the next take (order_free()).
+    // While a snapshot may read the pages: the blocks let go of since the oldest one alive was
+    // taken, oldest first; a snapshot may read them, so a take reuses one only where its page
+    // is the tree's own again, or last, copying its page. `free` blocks are read by none: a take
+    // writes them where they lie, even on a page a snapshot holds (settle()).
     bool shared = false;
-    bool reorder = false;
     MappedVector<std::uint32_t> released;
   };
   struct Block {
@@ -390,8 +395,13 @@ class PointStore {
   /// The block at `link`, to write past its points only (appending), with no copy of its page: a
   /// snapshot reads a block no further than the points it held then, never more than it holds now
   /// while the page is shared, since every write below them copies the page (write_block) and a
-  /// block handed out anew is written through writable() (take()).
+  /// block handed out anew is read by no snapshot (take()).
   [[nodiscard]] Block tail_block(std::uint32_t link) const { return block(link); }
+  /// Where the block at `link` starts, to write with no copy of its page: for a block no
+  /// snapshot reads (free, or handed out since the oldest snapshot alive was taken).
+  [[nodiscard]] std::byte* in_place(std::uint32_t link) const {
+    return const_cast<std::byte*>(address(link));  // NOLINT: the page's other blocks are not written
+  }
   /// The columns of a block of class c at `start`.
   [[nodiscard]] Block layout(std::byte* start, int c) const {
     std::byte* at = start + kOwnerBytes;
@@ -458,7 +468,7 @@ class PointStore {
   void move_to(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, int c) {
     const std::uint32_t fresh = take(c, owner);
     if (link != kNone) {
-      copy_points(block(link), write_block(fresh), count);
+      copy_points(block(link), tail_block(fresh), count);
       release(link);
     }
     link = fresh;
@@ -485,48 +495,106 @@ class PointStore {
       p.per_page = BlocksPerPage(std::uint32_t((page - kPageHeaderBytes) / p.block_bytes));
       p.pages = PageTable(page, ledger_);
     }
-    if (std::exchange(p.reorder, false)) order_free(p);
+    if (p.free.empty() && !p.released.empty()) settle();
     std::uint32_t i;
+    bool copy_page = false;  // a block a snapshot may read, on a page it holds
     if (!p.released.empty() && !p.pages.copies_on_write(p.per_page.page_of(p.released.back()))) {
-      i = p.released.back();
-      p.released.pop_back();
+      i = pop_released(std::size_t(c));
     } else if (!p.free.empty()) {
       i = p.free.back();
       p.free.pop_back();
-    } else if (!p.released.empty()) {
-      i = p.released.back();
-      p.released.pop_back();
+    } else if (2 * p.released.size() > p.used) {  // a snapshot held long: its copies are bounded, fresh blocks not
+      i = pop_released(std::size_t(c));
+      copy_page = true;
     } else {
       if (p.used > kIndexMask) throw std::length_error("eco: too many point blocks of one size");
       if (p.per_page.page_of(p.used) == p.pages.size()) p.pages.push_back();
       i = p.used++;
+      copy_page = true;  // a block a compaction moved from may lie here, on a page a snapshot holds
     }
     const std::uint32_t link = std::uint32_t(c) << kIndexBits | i;
-    std::memcpy(writable(link), &owner, sizeof owner);  // in the block's first line, written next anyway
+    // in the block's first line, written next anyway; from here on no snapshot reads the block
+    std::memcpy(copy_page ? writable(link) : in_place(link), &owner, sizeof owner);
     return link;
   }
 
-  /// Moves the released blocks to the free list.
-  static void take_released(Pool& p) {
-    p.free.insert(p.free.end(), p.released.begin(), p.released.end());
-    p.released.clear();
+  /// Frees the first `n` released blocks of pool c (the oldest).
+  void take_released(std::size_t c, std::size_t n) {
+    Pool& p = pools_[c];
+    assert(n <= p.released.size());
+    const auto first = p.released.begin(), last = first + std::ptrdiff_t(n);
+    p.free.insert(p.free.end(), first, last);
+    p.released.erase(first, last);
+    for (Share& s : shares_) {
+      if (c < s.released_before.size()) s.released_before[c] -= std::min(s.released_before[c], std::uint32_t(n));
+    }
   }
-  /// Orders the free blocks, released ones among them, so that the next takes come first from the
-  /// page with the most of them, then the next: while a snapshot holds the pages, each page a
-  /// take writes is copied once, for as many blocks as it has free.
-  static void order_free(Pool& p) {
-    take_released(p);
-    MappedVector<std::uint32_t> free_in_page(p.pages.size());
-    for (std::uint32_t i : p.free) ++free_in_page[p.per_page.page_of(i)];
-    std::sort(p.free.begin(), p.free.end(), [&](std::uint32_t a, std::uint32_t b) {
-      const std::uint32_t fa = free_in_page[p.per_page.page_of(a)], fb = free_in_page[p.per_page.page_of(b)];
-      return fa != fb ? fa < fb : a < b;
-    });
+  /// Takes the block pool c released last; no snapshot's count of those released before it
+  /// is left past the blocks still released.
+  std::uint32_t pop_released(std::size_t c) {
+    MappedVector<std::uint32_t>& released = pools_[c].released;
+    const std::uint32_t i = released.back();
+    released.pop_back();
+    for (Share& s : shares_) {
+      if (c < s.released_before.size()) s.released_before[c] = std::min(s.released_before[c], std::uint32_t(released.size()));
+    }
+    return i;
   }
+  /// Frees the blocks let go of before the oldest snapshot still alive was taken: none reads them.
+  /// Runs when a pool has no free block and a snapshot has gone since.
+  void settle() {
+    // acquire: the gone snapshot's reads finished before the blocks it read are written
+    const auto gone = [](const Share& s) { return !s.alive->load(std::memory_order_acquire); };
+    if (std::none_of(shares_.begin(), shares_.end(), gone)) return;
+    std::erase_if(shares_, gone);
+    if (shares_.empty()) return end_sharing();
+    const MappedVector<std::uint32_t>& oldest = shares_.front().released_before;
+    for (std::size_t c = 0; c < pools_.size(); ++c) take_released(c, c < oldest.size() ? oldest[c] : 0);
+  }
+  /// Forgets the released blocks of pool c from block `used` on (a compaction dropped them), each
+  /// snapshot's count of those released before it less the ones it had.
+  void drop_released_from(std::size_t c, std::uint32_t used) {
+    MappedVector<std::uint32_t>& released = pools_[c].released;
+    const auto below = [&](std::uint32_t n) {
+      return std::uint32_t(std::count_if(released.begin(), released.begin() + n, [&](std::uint32_t i) { return i < used; }));
+    };
+    for (Share& s : shares_) {
+      if (c < s.released_before.size()) s.released_before[c] = below(s.released_before[c]);
+    }
+    std::erase_if(released, [&](std::uint32_t i) { return i >= used; });
+  }
+
+  /// A snapshot taken of this store: alive while its store is (SnapshotHold), and how many blocks
+  /// each pool had released then (those it cannot read).
+  struct Share {
+    std::shared_ptr<std::atomic<bool>> alive;
+    MappedVector<std::uint32_t> released_before;
+  };
+  /// A snapshot's store's hold on its Share: marks it gone when the store is.
+  class SnapshotHold {
+   public:
+    SnapshotHold() = default;
+    explicit SnapshotHold(std::shared_ptr<std::atomic<bool>> alive) : alive_(std::move(alive)) {}
+    SnapshotHold(SnapshotHold&& other) noexcept = default;
+    SnapshotHold& operator=(SnapshotHold&& other) noexcept {
+      std::swap(alive_, other.alive_);
+      return *this;
+    }
+    SnapshotHold(const SnapshotHold&) = delete;
+    SnapshotHold& operator=(const SnapshotHold&) = delete;
+    ~SnapshotHold() {
+      if (alive_) alive_->store(false, std::memory_order_release);
+    }
+
+   private:
+    std::shared_ptr<std::atomic<bool>> alive_;
+  };
 
   Columns columns_;
   std::shared_ptr<PageLedger> ledger_;
   MappedVector<Pool> pools_;
+  MappedVector<Share> shares_;  // the snapshots taken of this store that may be alive, oldest first
+  SnapshotHold held_;  // a snapshot's store: its mark
 };
 
 }  // namespace eco::detail
