@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <deque>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -61,9 +62,17 @@ Columns columns_of(int mask) { return {(mask & 1) != 0, (mask & 2) != 0, (mask &
 
 class PointStoreModel : public ::testing::TestWithParam<int> {};
 
+/// A store shared as a snapshot, and what each of its leaves held then.
+struct SharedAt {
+  PointStore snapshot;
+  std::vector<std::uint32_t> links;
+  std::vector<std::vector<StoredPoint>> model;
+};
+
 TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsPicksRetainsDrainsAndReleases) {
   const Columns kept = columns_of(GetParam());
   PointStore store(kept);
+  std::deque<SharedAt> shared;  // up to three snapshots alive, each read as it was taken
   constexpr int kLeaves = 64;
   std::vector<std::uint32_t> links(kLeaves, kNone);
   std::vector<std::vector<StoredPoint>> model(kLeaves);
@@ -75,13 +84,21 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsPicksRetainsDrainsAnd
     std::uint32_t& link = links[leaf];
     std::vector<StoredPoint>& expected = model[leaf];
     const auto count = std::uint32_t(expected.size());
-    switch (rng() % 9) {
+    switch (rng() % 10) {
       case 0: {  // retain: drop points below a random x
         const float cut = coord(rng);
         const std::uint32_t left = store.retain(link, count, [&](const StoredPoint& s) { return s.p[0] >= cut; });
         std::erase_if(expected, [&](const StoredPoint& s) { return s.p[0] < cut; });
         ASSERT_EQ(left, expected.size());
         ASSERT_EQ(link == kNone, left == 0);
+        break;
+      }
+      case 9: {  // retain: drop the last few points only (the next append writes where they were)
+        const std::uint32_t keep = count - std::min<std::uint32_t>(count, 1 + rng() % 4);
+        std::uint32_t seen = 0;
+        const std::uint32_t left = store.retain(link, count, [&](const StoredPoint&) { return seen++ < keep; });
+        expected.resize(keep);
+        ASSERT_EQ(left, keep);
         break;
       }
       case 1: {
@@ -99,8 +116,8 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsPicksRetainsDrainsAnd
         break;
       case 3:  // now and then, blocks move to the pools' front: every leaf keeps its points
         if (rng() % 16 == 0) {
-          const auto holds = [&](std::uint32_t owner, std::uint32_t l) { return owner < kLeaves && links[owner] == l; };
-          store.compact(std::size_t(rng() % 20000), holds, [&](std::uint32_t owner, std::uint32_t moved) {
+          const auto last_of = [&](std::uint32_t owner) { return owner < kLeaves ? links[owner] : kNone; };
+          store.compact(std::size_t(rng() % 20000), last_of, [&](std::uint32_t owner, std::uint32_t moved) {
             ASSERT_LT(owner, std::uint32_t(kLeaves));
             links[owner] = moved;
           });
@@ -110,15 +127,19 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsPicksRetainsDrainsAnd
           }
         }
         break;
-      case 4: {  // append points picked from another leaf's block, in any order and repeated
+      case 4: {  // append points picked from a block of another leaf, in any order and repeated
         const std::size_t other = (leaf + 1 + rng() % (kLeaves - 1)) % kLeaves;
         const std::vector<StoredPoint>& source = model[other];
-        if (source.empty()) break;
+        std::vector<std::pair<PointSpan, std::uint32_t>> blocks;  // and the points before each
+        store.for_each_span(links[other], std::uint32_t(source.size()),
+                            [&](const PointSpan& s, std::uint32_t, std::uint32_t before) { blocks.emplace_back(s, before); });
+        if (blocks.empty()) break;
+        const auto [from, before] = blocks[rng() % blocks.size()];
         std::vector<std::uint32_t> picked(1 + rng() % 40);
-        for (std::uint32_t& i : picked) i = std::uint32_t(rng() % source.size());
-        store.append_picked(link, std::uint32_t(leaf), count, store.span(links[other], std::uint32_t(source.size())),
-                            picked.data(), std::uint32_t(picked.size()), rng() % 2 == 0 ? 0u : count + 60u);
-        for (const std::uint32_t i : picked) expected.push_back(source[i]);
+        for (std::uint32_t& i : picked) i = std::uint32_t(rng() % from.size);
+        store.append_picked(link, std::uint32_t(leaf), count, from, picked.data(), std::uint32_t(picked.size()),
+                            rng() % 2 == 0 ? 0u : count + 60u);
+        for (const std::uint32_t i : picked) expected.push_back(source[before + i]);
         break;
       }
       default: {  // append a range, now and then a long one (large classes)
@@ -135,7 +156,19 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsPicksRetainsDrainsAnd
       }
     }
     ASSERT_TRUE(same(contents(store, link, std::uint32_t(expected.size())), expected)) << "step " << step;
-    const PointSpan span = store.span(link, std::uint32_t(expected.size()));
+    if (step % 400 == 0) {  // a snapshot now and then; the oldest goes
+      shared.push_back({store.share(), links, model});
+      if (shared.size() > 3) shared.pop_front();
+    }
+    if (step % 50 == 0) {
+      for (const SharedAt& s : shared) {
+        for (std::size_t l = 0; l < kLeaves; ++l) {
+          ASSERT_TRUE(same(contents(s.snapshot, s.links[l], std::uint32_t(s.model[l].size())), s.model[l]))
+              << "a snapshot's leaf " << l << " at step " << step;
+        }
+      }
+    }
+    const PointSpan span = store.span(link, 0);  // the last block's columns
     const bool linked = link != kNone;
     ASSERT_EQ(span.stamps != nullptr, kept.stamps && linked);
     ASSERT_EQ(span.ids != nullptr, kept.ids && linked);
@@ -326,13 +359,13 @@ TEST(PointStore, CompactionGivesBackThePagesAShrunkMapEmptiedWithinItsBudget) {
     }
   }
   EXPECT_GT(store.free_bytes(), full / 2);
-  const auto holds = [&](std::uint32_t o, std::uint32_t link) { return o - 1000 < links.size() && links[o - 1000] == link; };
+  const auto last_of = [&](std::uint32_t o) { return o - 1000 < links.size() ? links[o - 1000] : kNone; };
   const auto relink = [&](std::uint32_t o, std::uint32_t link) { links[o - 1000] = link; };
   constexpr std::size_t kBudget = 20000;
   std::size_t calls = 0;
   for (std::size_t done = 1; done > 0; ++calls) {  // as updates would: a budget at a time
     const std::size_t before = store.bytes();
-    done = store.compact(kBudget, holds, relink);
+    done = store.compact(kBudget, last_of, relink);
     EXPECT_LE(done, kBudget + 4096) << "one block past the budget at most";
     EXPECT_LE(store.bytes(), before);
     all_held();
