@@ -24,15 +24,17 @@ namespace eco::detail {
 namespace {
 
 /// A node the first pass looked into, in the order it did (preorder). A leaf's points (`points`
-/// of them; 0 for an inner node) lie in the blocks ending at `link` (while the tree is unchanged:
-/// the first pass only), and are numbered [first, first + points).
+/// of them; 0, with stride 0, for an inner node) lie in its block's columns, x from `x`, y and z
+/// `stride` floats further each (while the tree is unchanged: the first pass only), and are
+/// numbered [first, first + points).
 struct Visit {
   std::uint32_t id;
   std::uint32_t parent;  // its parent's Visit, kNone for the root
   std::uint32_t points;
   std::uint32_t first;
   std::uint32_t seen;    // points seen through in the subtree (filled after the pass)
-  std::uint32_t link;    // a leaf's last block; kNone for an inner node
+  std::uint32_t stride;
+  const float* x;
 };
 /// The numbers of the points seen through, in increasing order.
 using SeenPoints = std::vector<std::uint32_t>;
@@ -44,11 +46,12 @@ std::uint32_t look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, c
   const Node& n = t.nodes()[id];
   if (n.count == 0 || !sight.may_see(n.bounds)) return 0;
   if (n.leaf) {
-    visits.push_back({id, parent, n.count, first, 0, n.link});
+    const PointSpan points = t.points().span(n.link, n.count);
+    visits.push_back({id, parent, n.count, first, 0, std::uint32_t(points.y - points.x), points.x});
     return n.count;
   }
   const std::uint32_t here = std::uint32_t(visits.size());
-  visits.push_back({id, parent, 0, first, 0, kNone});
+  visits.push_back({id, parent, 0, first, 0, 0, nullptr});
   t.nodes().prefetch_children(id);  // their misses overlap
   std::uint32_t points = 0;
   t.nodes().for_each_child(id, [&](int, std::uint32_t child) { points += look_into(t, child, here, sight, visits, first + points); });
@@ -59,23 +62,22 @@ std::uint32_t look_into(const Tree& t, std::uint32_t id, std::uint32_t parent, c
 /// numbers, a group at a time across leaves; every line of the leaves' columns is asked for a few
 /// leaves ahead, since between updates the caller's own work evicts them from the caches.
 template <class Sink>
-void stream_points(const PointStore& store, const std::vector<Visit>& visits, Sink& sink) {
+void stream_points(const std::vector<Visit>& visits, Sink& sink) {
   constexpr std::size_t kAhead = 8;
   constexpr std::uint32_t kFloatsPerLine = 64 / sizeof(float);
   for (std::size_t v = 0; v < visits.size(); ++v) {
     if (v + kAhead < visits.size()) {
       const Visit& ahead = visits[v + kAhead];
-      store.for_each_span(ahead.link, ahead.points, [&](const PointSpan& s, std::uint32_t, std::uint32_t) {
-        for (const float* column : {s.x, s.y, s.z}) {
-          for (std::uint32_t at = 0; at < s.size; at += kFloatsPerLine) __builtin_prefetch(column + at);
-          __builtin_prefetch(column + s.size - 1);  // the last line, where the first is not aligned
-        }
-      });
+      for (std::uint32_t column = 0; column < 3 * ahead.stride; column += ahead.stride) {
+        for (std::uint32_t at = 0; at < ahead.points; at += kFloatsPerLine) __builtin_prefetch(ahead.x + column + at);
+        __builtin_prefetch(ahead.x + column + ahead.points - 1);  // the last line, where the first is not aligned
+      }
     }
     const Visit& leaf = visits[v];
-    store.for_each_span(leaf.link, leaf.points, [&](const PointSpan& s, std::uint32_t, std::uint32_t) {
-      sink.add_columns(s.x, s.y, s.z, s.size);  // numbered on from the last block's: leaf.first first
-    });
+    const float* x = leaf.x;
+    const float* y = x + leaf.stride;
+    const float* z = y + leaf.stride;
+    sink.add_columns(x, y, z, leaf.points);  // numbered on from the last leaf's: leaf.first
   }
   sink.flush();
 }
@@ -145,7 +147,7 @@ void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judge& judg
   };
   PixelStream<decltype(take), PixelLookup::Reach::SquaredRange, SeenThrough> stream(pixels, take, judge.seen_through);
   Sink sink(judge.sight.pose(), stream);
-  stream_points(tree.points(), visits, sink);
+  stream_points(visits, sink);
   stats.cleared += seen.size();
   if (seen.empty()) return;
   std::sort(seen.begin(), seen.end());  // tier 1's undecided points came later

@@ -203,11 +203,11 @@ void put_tree(ByteWriter& out, const TreeLayout& layout) {
     }
   }
   out.put(std::uint64_t(layout.point_count));
-  // each column whole, gathered block by block from where the tree holds it
+  // each column whole, gathered leaf by leaf from where the tree holds it
   const auto column = [&](auto column_of) {
-    for (const PointSpan& block : layout.blocks) {
-      const auto* values = column_of(block);  // null: a column the tree does not keep, or no points
-      if (values != nullptr) out.put_bytes({reinterpret_cast<const char*>(values), block.size * sizeof(values[0])});
+    for (const PointSpan& leaf : layout.leaves) {
+      const auto* values = column_of(leaf);  // null: a column the tree does not keep, or no points
+      if (values != nullptr) out.put_bytes({reinterpret_cast<const char*>(values), leaf.size * sizeof(values[0])});
     }
   };
   column([](const PointSpan& s) { return s.x; });

@@ -23,13 +23,12 @@ void copy_held(const Tree& t, const Eigen::Vector3d& origin, float* out) {
       t.nodes().for_each_child(id, [&](int, std::uint32_t child) { self(self, child); });
       return;
     }
-    t.points().for_each_span(n.link, n.count, [&](const PointSpan& s, std::uint32_t, std::uint32_t) {
-      for (std::uint32_t i = 0; i < s.size; ++i, out += 3) {  // as to_world, then less the origin
-        out[0] = float((anchor[0] + double(s.x[i])) - origin[0]);
-        out[1] = float((anchor[1] + double(s.y[i])) - origin[1]);
-        out[2] = float((anchor[2] + double(s.z[i])) - origin[2]);
-      }
-    });
+    const PointSpan s = t.points().span(n.link, n.count);
+    for (std::uint32_t i = 0; i < s.size; ++i, out += 3) {  // as to_world, then less the origin
+      out[0] = float((anchor[0] + double(s.x[i])) - origin[0]);
+      out[1] = float((anchor[1] + double(s.y[i])) - origin[1]);
+      out[2] = float((anchor[2] + double(s.z[i])) - origin[2]);
+    }
   };
   walk(walk, t.root());
 }

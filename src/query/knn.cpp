@@ -177,24 +177,23 @@ class KnnSearch {
   void visit(std::uint32_t id, const detail::Cell& cell) {
     const detail::Node& n = t_.nodes()[id];
     if (n.leaf) {
-      t_.points().for_each_span(n.link, n.count, [&](const detail::PointSpan& c, std::uint32_t block, std::uint32_t) {
-        std::array<double, detail::kMaxDistances> d2;
-        for (std::uint32_t begin = 0; begin < c.size; begin += detail::kMaxDistances) {
-          const auto m = std::min<std::uint32_t>(detail::kMaxDistances, c.size - begin);
-          // the points nearer than the k-th distance on entry; each asked again, as offers lower it
-          std::uint64_t near = detail::squared_distances(c.x + begin, c.y + begin, c.z + begin, m, q_, worst(), d2.data());
-          // Many points nearer than the k-th distance (the first leaf's): most would enter the
-          // results only to be pushed out. A bound from eight of them leaves the few that can stay.
-          const std::size_t k = results_.capacity();
-          if (k <= detail::kGroups && m >= detail::kGroups && more_bits_than(near, 2 * k)) {
-            near &= detail::at_most(d2.data(), m, detail::kth_group_minimum(d2.data(), m, k));
-          }
-          for (; near != 0; near &= near - 1) {
-            const auto i = std::uint32_t(std::countr_zero(near));
-            if (d2[i] < worst()) offer(d2[i], c, block, begin + i);
-          }
+      const detail::PointSpan c = t_.points().span(n.link, n.count);
+      std::array<double, detail::kMaxDistances> d2;
+      for (std::uint32_t begin = 0; begin < c.size; begin += detail::kMaxDistances) {
+        const auto m = std::min<std::uint32_t>(detail::kMaxDistances, c.size - begin);
+        // the points nearer than the k-th distance on entry; each asked again, as offers lower it
+        std::uint64_t near = detail::squared_distances(c.x + begin, c.y + begin, c.z + begin, m, q_, worst(), d2.data());
+        // Many points nearer than the k-th distance (the first leaf's): most would enter the
+        // results only to be pushed out. A bound from eight of them leaves the few that can stay.
+        const std::size_t k = results_.capacity();
+        if (k <= detail::kGroups && m >= detail::kGroups && more_bits_than(near, 2 * k)) {
+          near &= detail::at_most(d2.data(), m, detail::kth_group_minimum(d2.data(), m, k));
         }
-      });
+        for (; near != 0; near &= near - 1) {
+          const auto i = std::uint32_t(std::countr_zero(near));
+          if (d2[i] < worst()) offer(d2[i], c, n.link, begin + i);
+        }
+      }
       return;
     }
     // The children's cells bound their points, and their distances come from the lattice walls

@@ -133,17 +133,16 @@ class LatticeVoxels {
     }
     // one word for up to 64 voxels: kept in a register, not read back from memory every point
     std::array<std::uint64_t, (per_axis * per_axis * per_axis + 63) / 64> marked{};
-    t_.points().for_each_span(n.link, n.count, [&](const PointSpan& points, std::uint32_t, std::uint32_t) {
-      for (std::uint32_t i = 0; i < points.size; ++i) {
-        const std::array<float, 3> p{points.x[i], points.y[i], points.z[i]};
-        std::array<int, 3> sub{};
-        for (int a = 0; a < 3; ++a) {
-          for (int j = 0; j + 1 < per_axis; ++j) sub[a] += int(p[a] >= walls[a][std::size_t(j)]);
-        }
-        const int bit = (sub[2] * per_axis + sub[1]) * per_axis + sub[0];
-        marked[std::size_t(bit >> 6)] |= std::uint64_t{1} << (bit & 63);
+    const PointSpan points = t_.points().span(n.link, n.count);
+    for (std::uint32_t i = 0; i < points.size; ++i) {
+      const std::array<float, 3> p{points.x[i], points.y[i], points.z[i]};
+      std::array<int, 3> sub{};
+      for (int a = 0; a < 3; ++a) {
+        for (int j = 0; j + 1 < per_axis; ++j) sub[a] += int(p[a] >= walls[a][std::size_t(j)]);
       }
-    });
+      const int bit = (sub[2] * per_axis + sub[1]) * per_axis + sub[0];
+      marked[std::size_t(bit >> 6)] |= std::uint64_t{1} << (bit & 63);
+    }
     const VoxelKey first = voxel_of(cell);
     for (std::size_t w = 0; w < marked.size(); ++w) {
       for (std::uint64_t bits = marked[w]; bits != 0; bits &= bits - 1) {

@@ -116,8 +116,8 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsPicksRetainsDrainsAnd
         break;
       case 3:  // now and then, blocks move to the pools' front: every leaf keeps its points
         if (rng() % 16 == 0) {
-          const auto last_of = [&](std::uint32_t owner) { return owner < kLeaves ? links[owner] : kNone; };
-          store.compact(std::size_t(rng() % 20000), last_of, [&](std::uint32_t owner, std::uint32_t moved) {
+          const auto holds = [&](std::uint32_t owner, std::uint32_t l) { return owner < kLeaves && links[owner] == l; };
+          store.compact(std::size_t(rng() % 20000), holds, [&](std::uint32_t owner, std::uint32_t moved) {
             ASSERT_LT(owner, std::uint32_t(kLeaves));
             links[owner] = moved;
           });
@@ -127,19 +127,15 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsPicksRetainsDrainsAnd
           }
         }
         break;
-      case 4: {  // append points picked from a block of another leaf, in any order and repeated
+      case 4: {  // append points picked from another leaf's block, in any order and repeated
         const std::size_t other = (leaf + 1 + rng() % (kLeaves - 1)) % kLeaves;
         const std::vector<StoredPoint>& source = model[other];
-        std::vector<std::pair<PointSpan, std::uint32_t>> blocks;  // and the points before each
-        store.for_each_span(links[other], std::uint32_t(source.size()),
-                            [&](const PointSpan& s, std::uint32_t, std::uint32_t before) { blocks.emplace_back(s, before); });
-        if (blocks.empty()) break;
-        const auto [from, before] = blocks[rng() % blocks.size()];
+        if (source.empty()) break;
         std::vector<std::uint32_t> picked(1 + rng() % 40);
-        for (std::uint32_t& i : picked) i = std::uint32_t(rng() % from.size);
-        store.append_picked(link, std::uint32_t(leaf), count, from, picked.data(), std::uint32_t(picked.size()),
-                            rng() % 2 == 0 ? 0u : count + 60u);
-        for (const std::uint32_t i : picked) expected.push_back(source[before + i]);
+        for (std::uint32_t& i : picked) i = std::uint32_t(rng() % source.size());
+        store.append_picked(link, std::uint32_t(leaf), count, store.span(links[other], std::uint32_t(source.size())),
+                            picked.data(), std::uint32_t(picked.size()), rng() % 2 == 0 ? 0u : count + 60u);
+        for (const std::uint32_t i : picked) expected.push_back(source[i]);
         break;
       }
       default: {  // append a range, now and then a long one (large classes)
@@ -168,7 +164,7 @@ TEST_P(PointStoreModel, MatchesAVectorPerLeafThroughAppendsPicksRetainsDrainsAnd
         }
       }
     }
-    const PointSpan span = store.span(link, 0);  // the last block's columns
+    const PointSpan span = store.span(link, std::uint32_t(expected.size()));
     const bool linked = link != kNone;
     ASSERT_EQ(span.stamps != nullptr, kept.stamps && linked);
     ASSERT_EQ(span.ids != nullptr, kept.ids && linked);
@@ -359,13 +355,13 @@ TEST(PointStore, CompactionGivesBackThePagesAShrunkMapEmptiedWithinItsBudget) {
     }
   }
   EXPECT_GT(store.free_bytes(), full / 2);
-  const auto last_of = [&](std::uint32_t o) { return o - 1000 < links.size() ? links[o - 1000] : kNone; };
+  const auto holds = [&](std::uint32_t o, std::uint32_t link) { return o - 1000 < links.size() && links[o - 1000] == link; };
   const auto relink = [&](std::uint32_t o, std::uint32_t link) { links[o - 1000] = link; };
   constexpr std::size_t kBudget = 20000;
   std::size_t calls = 0;
   for (std::size_t done = 1; done > 0; ++calls) {  // as updates would: a budget at a time
     const std::size_t before = store.bytes();
-    done = store.compact(kBudget, last_of, relink);
+    done = store.compact(kBudget, holds, relink);
     EXPECT_LE(done, kBudget + 4096) << "one block past the budget at most";
     EXPECT_LE(store.bytes(), before);
     all_held();

@@ -73,7 +73,7 @@ class TreeOpsTest : public ::testing::Test {
 struct FileColumns {
   std::vector<float> x, y, z;
   explicit FileColumns(const TreeLayout& layout) {
-    for (const PointSpan& leaf : layout.blocks) {
+    for (const PointSpan& leaf : layout.leaves) {
       EXPECT_EQ(leaf.stamps, nullptr);
       EXPECT_EQ(leaf.ids, nullptr);
       EXPECT_EQ(leaf.intensities, nullptr);

@@ -144,57 +144,56 @@ class PointStore {
     return bytes;
   }
 
-  /// Appends [first, last) (StoredPoints, or BarePoints when no column is kept) to the leaf whose
-  /// last block is `link` (kNone: no block yet), `count` points in all, of node `owner`
-  /// (compact() tells it when a block moves). A leaf grows in place: its last block's room is
-  /// filled, then a new block is chained after it; what the earlier blocks hold is never moved or
-  /// written (a snapshot keeps sharing their pages). Only a short leaf moves to a larger block
-  /// (kLongestMove). A first block is made to hold `room` points if that is more (points known
-  /// to be on their way).
+  /// Appends [first, last) (StoredPoints, or BarePoints when no column is kept) to the block at
+  /// `link` that holds `count` points (kNone: no block yet), of node `owner` (compact() tells it
+  /// when its block moves). A block that must grow is made to hold `room` points if that is more
+  /// (points known to be on their way).
   template <class Point>
   void append(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const Point* first, const Point* last,
               std::uint32_t room = 0) {
-    if constexpr (std::is_same_v<Point, BarePoint>) assert(columns_.count() == 0);
-    extend(link, owner, count, std::uint32_t(last - first), room,
-           [&](const Block& b, std::uint32_t at, std::uint32_t from, std::uint32_t k) {
-             // column by column: each loop writes one array, with no test per point
-             const Point* in = first + from;
-             float* x = b.x + at;
-             float* y = b.x + b.capacity + at;
-             float* z = b.x + 2 * std::size_t(b.capacity) + at;
-             for (std::uint32_t i = 0; i < k; ++i) {
-               x[i] = in[i].p[0];
-               y[i] = in[i].p[1];
-               z[i] = in[i].p[2];
-             }
-             if constexpr (std::is_same_v<Point, StoredPoint>) {
-               if (b.stamps) std::transform(in, in + k, b.stamps + at, [](const StoredPoint& s) { return s.stamp; });
-               if (b.ids) std::transform(in, in + k, b.ids + at, [](const StoredPoint& s) { return s.id; });
-               if (b.intensities) std::transform(in, in + k, b.intensities + at, [](const StoredPoint& s) { return s.intensity; });
-               if (b.times) std::transform(in, in + k, b.times + at, [](const StoredPoint& s) { return s.time; });
-             }
-           });
+    const auto m = std::uint32_t(last - first);
+    if (m == 0) return;
+    reserve(link, owner, count, count + m, room);
+    const Block b = tail_block(link);
+    // column by column: each loop writes one array, with no test per point
+    float* x = b.x + count;
+    float* y = x + b.capacity;
+    float* z = y + b.capacity;
+    for (std::uint32_t i = 0; i < m; ++i) {
+      x[i] = first[i].p[0];
+      y[i] = first[i].p[1];
+      z[i] = first[i].p[2];
+    }
+    if constexpr (std::is_same_v<Point, StoredPoint>) {
+      if (b.stamps) std::transform(first, last, b.stamps + count, [](const StoredPoint& s) { return s.stamp; });
+      if (b.ids) std::transform(first, last, b.ids + count, [](const StoredPoint& s) { return s.id; });
+      if (b.intensities) std::transform(first, last, b.intensities + count, [](const StoredPoint& s) { return s.intensity; });
+      if (b.times) std::transform(first, last, b.times + count, [](const StoredPoint& s) { return s.time; });
+    } else {
+      static_assert(std::is_same_v<Point, BarePoint>);
+      assert(columns_.count() == 0);
+    }
   }
 
-  /// Appends the points source[picked[0]], ..., source[picked[n - 1]] (of a block of this store)
-  /// to the leaf whose last block is `link`, as append() does.
+  /// Appends the points source[picked[0]], ..., source[picked[n - 1]] (of another block of this
+  /// store) to the block at `link`, as append() does.
   void append_picked(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const PointSpan& source,
                      const std::uint32_t* picked, std::uint32_t n, std::uint32_t room = 0) {
-    append_columns(link, owner, count, source, n, room, [&](auto* to, const auto* from, std::uint32_t first, std::uint32_t k) {
-      for (std::uint32_t i = 0; i < k; ++i) to[i] = from[picked[first + i]];
+    append_columns(link, owner, count, source, n, room, [&](auto* to, const auto* from) {
+      for (std::uint32_t i = 0; i < n; ++i) to[i] = from[picked[i]];
     });
   }
   /// Appends values [first, first + n) of each of `source`'s columns (the columns this store
-  /// keeps, and only those) to the leaf whose last block is `link`, as append() does.
+  /// keeps, and only those) to the block at `link`, as append() does.
   void append_bytes(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const ColumnBytes& source,
                     std::size_t first, std::uint32_t n) {
-    append_columns(link, owner, count, source, n, 0, [&](auto* to, const std::byte* from, std::uint32_t at, std::uint32_t k) {
+    append_columns(link, owner, count, source, n, 0, [&](auto* to, const std::byte* from) {
       static_assert(sizeof(*to) == 4);
-      std::memcpy(to, from + (first + at) * 4, std::size_t(k) * 4);
+      std::memcpy(to, from + first * 4, std::size_t(n) * 4);
     });
   }
 
-  /// The first `count` points of the one block at `link` (a leaf's: for_each_span()).
+  /// The `count` points of the block at `link`.
   [[nodiscard]] PointSpan span(std::uint32_t link, std::uint32_t count) const {
     if (link == kNone) return {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, 0};
     const Block b = block(link);
@@ -202,103 +201,56 @@ class PointStore {
             count};
   }
 
-  /// Calls f(const PointSpan& points, std::uint32_t block, std::uint32_t before) for each block of
-  /// the leaf whose last block is `link`, `count` points in all, first to last: its points, its
-  /// link (span(block, i + 1)[i] is point i of it again), the leaf's points before it.
-  template <class F>
-  void for_each_span(std::uint32_t link, std::uint32_t count, F&& f) const {
-    if (link == kNone) return;
-    const BlockHeader last = header(link);
-    if (last.prev == kNone) return f(span(link, count), link, 0u);  // one block: most leaves
-    std::array<std::uint32_t, kLongestChain> chain;
-    const std::size_t n = chain_of(link, chain);
-    for (std::size_t i = n; i-- > 0;) {
-      const std::uint32_t before = header(chain[i]).before;
-      const std::uint32_t end = i == 0 ? count : header(chain[i - 1]).before;
-      f(span(chain[i], end - before), chain[i], before);
-    }
-  }
-
-  /// Calls f(const StoredPoint&) for each of the `count` points of the leaf whose last block is `link`.
+  /// Calls f(const StoredPoint&) for each of the `count` points at `link`.
   template <class F>
   void for_each(std::uint32_t link, std::uint32_t count, F&& f) const {
-    for_each_span(link, count, [&](const PointSpan& s, std::uint32_t, std::uint32_t) {
-      for (std::uint32_t i = 0; i < s.size; ++i) f(s[i]);
-    });
+    const PointSpan s = span(link, count);
+    for (std::uint32_t i = 0; i < s.size; ++i) f(s[i]);
   }
 
-  /// Keeps the points for which keep(const StoredPoint&) holds, in order; returns how many. The
-  /// kept points fill the leaf's blocks from its first; blocks left empty are released, and a
-  /// leaf left short, or in a block far larger than its points, moves to one block that fits.
+  /// Keeps the points for which keep(const StoredPoint&) holds, in order; returns how many.
+  /// A block left far larger than its points moves to a smaller one; an empty one is released.
   template <class Keep>
   std::uint32_t retain(std::uint32_t& link, std::uint32_t count, Keep&& keep) {
     if (link == kNone) return 0;
-    std::array<std::uint32_t, kLongestChain> chain, before;  // last block first; the points before each
-    const std::size_t n = chain_of(link, chain);
-    for (std::size_t i = 0; i < n; ++i) before[i] = header(chain[i]).before;
-    // Written from the first point that goes (a leaf that keeps all stays shared), each block
-    // before the last full: point `kept` goes to block w. The block written to from then on is
-    // copied (write_block()) even if no point follows: appends will write past `kept` there.
-    std::size_t w = n - 1;
-    std::optional<Block> to;
-    const auto seek = [&](std::uint32_t kept) {
-      while (w > 0 && kept >= before[w - 1]) --w, to.reset();
-      if (!to) to = write_block(chain[w]);
-    };
+    const Block from = block(link);
+    std::optional<Block> to;  // written from the first point that goes: a block that keeps all stays shared
     std::uint32_t kept = 0;
-    for (std::size_t r = n; r-- > 0;) {
-      const Block from = block(chain[r]);
-      const std::uint32_t held = (r == 0 ? count : before[r - 1]) - before[r];
-      for (std::uint32_t i = 0; i < held; ++i) {
-        const StoredPoint s = read(from, i);
-        if (!keep(s)) {
-          if (!to) seek(kept);
-          continue;
-        }
-        if (to) {
-          seek(kept);
-          write(*to, kept - before[w], s);
-        }
-        ++kept;
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const StoredPoint s = read(from, i);
+      if (!keep(s)) {
+        if (!to) to = write_block(link);
+        continue;
       }
+      if (to) write(*to, kept, s);
+      ++kept;
     }
     if (kept == 0) {
       release(link);
-      return 0;
-    }
-    std::size_t last = 0;  // the blocks past the last point kept are left empty
-    while (before[last] >= kept) release_block(chain[last++]);
-    link = chain[last];
-    const bool one = last == n - 1;
-    if (one ? class_for(kept) + 1 < class_of(link) : kept <= kLongestMove) {
-      move_to(link, owner_of(link), kept, class_for(kept));  // the same leaf's, into one block that fits
+    } else if (class_for(kept) + 1 < class_of(link)) {
+      move_to(link, owner_of(link), kept, class_for(kept));  // the same leaf's
     }
     return kept;
   }
 
-  /// Adds `shift` [s] to the times of the `count` points of the leaf whose last block is `link`
-  /// (rounded once more to float).
+  /// Adds `shift` [s] to the times of the `count` points at `link` (rounded once more to float).
   void shift_times(std::uint32_t link, std::uint32_t count, double shift) {
     if (link == kNone || !columns_.times) return;
-    for_each_span(link, count, [&](const PointSpan& s, std::uint32_t block, std::uint32_t) {
-      float* times = write_block(block).times;
-      for (std::uint32_t i = 0; i < s.size; ++i) times[i] = float(double(times[i]) + shift);
-    });
+    float* times = write_block(link).times;
+    for (std::uint32_t i = 0; i < count; ++i) times[i] = float(double(times[i]) + shift);
   }
 
-  /// Appends the `count` points of the leaf whose last block is `link` to `out` and releases its blocks.
+  /// Appends the `count` points at `link` to `out` and releases the block.
   void drain(std::uint32_t& link, std::uint32_t count, std::vector<StoredPoint>& out) {
     for_each(link, count, [&](const StoredPoint& s) { out.push_back(s); });
     release(link);
   }
 
-  /// Releases every block of the leaf whose last block is `link`.
   void release(std::uint32_t& link) {
-    for (std::uint32_t at = link; at != kNone;) {
-      const std::uint32_t prev = header(at).prev;
-      release_block(at);
-      at = prev;
-    }
+    if (link == kNone) return;
+    // the owner named in the block is left as it was: compact() asks whether it still holds it
+    Pool& p = pools_[std::size_t(class_of(link))];
+    (p.shared ? p.released : p.free).push_back(index_of(link));
     link = kNone;
   }
 
@@ -328,11 +280,11 @@ class PointStore {
   /// Moves the live blocks at the top of each pool into free ones below, from the top down, and
   /// releases the pages emptied behind them, as a map that shrank needs; stops once it has moved
   /// or dropped `budget` bytes of blocks, so that no update pays for all at once (each block read,
-  /// each page released costs). last_of(owner) is the last block of the leaf `owner` (kNone if it
-  /// is none): a block is live if it lies in that leaf's chain (else it is free); relink(owner,
-  /// link) hands a leaf its last block's new link. Returns the bytes of blocks moved or dropped.
-  template <class LastOf, class Relink>
-  std::size_t compact(std::size_t budget, LastOf&& last_of, Relink&& relink) {
+  /// each page released costs). holds(owner, link) says whether the node a block was last handed
+  /// to still holds it (else the block is free); relink(owner, link) hands each moved block's
+  /// owner its new link. Returns the bytes of blocks moved or dropped.
+  template <class Holds, class Relink>
+  std::size_t compact(std::size_t budget, Holds&& holds, Relink&& relink) {
     std::size_t done = 0;
     settle();
     for (std::size_t c = 0; c < pools_.size(); ++c) {
@@ -341,8 +293,7 @@ class PointStore {
         const std::uint32_t top = p.used - 1;
         const std::uint32_t from_link = std::uint32_t(c) << kIndexBits | top;
         const std::uint32_t owner = owner_of(from_link);
-        const std::optional<std::uint32_t> next = next_in_chain(last_of(owner), from_link);
-        if (!next) {  // free: dropped where it lies
+        if (!holds(owner, from_link)) {  // free: dropped where it lies
           --p.used;
           done += p.block_bytes;
           continue;
@@ -352,12 +303,8 @@ class PointStore {
         const std::uint32_t to = p.free.back();
         p.free.pop_back();
         const std::uint32_t to_link = std::uint32_t(c) << kIndexBits | to;
-        std::memcpy(in_place(to_link), address(from_link), p.block_bytes);  // its header too; a free block: no copy
-        if (*next == kNone) {
-          relink(owner, to_link);
-        } else {
-          set_prev(*next, to_link);
-        }
+        std::memcpy(in_place(to_link), address(from_link), p.block_bytes);  // its owner too; a free block: no copy
+        relink(owner, to_link);
         --p.used;
         done += p.block_bytes;
       }
@@ -395,11 +342,6 @@ class PointStore {
   static_assert(kClasses <= std::size_t{1} << (32 - kIndexBits));
 
   static constexpr std::uint32_t kIndexMask = (std::uint32_t{1} << kIndexBits) - 1;
-  /// A leaf of one block grows by moving to a larger one up to this many points (a short copy),
-  /// then by chaining blocks.
-  static constexpr std::uint32_t kLongestMove = 32;
-  /// Blocks in a leaf's chain at most: each new one holds half the points before it or more.
-  static constexpr std::size_t kLongestChain = 64;
   static constexpr std::size_t kPageBytes = kMappedFrom;  // small: a sparse map pays little per size class
   static constexpr std::size_t kMostPageBytes = std::size_t{1} << 14;
 
@@ -428,41 +370,8 @@ class PointStore {
   static int class_of(std::uint32_t link) { return int(link >> kIndexBits); }
   static std::uint32_t index_of(std::uint32_t link) { return link & kIndexMask; }
 
-  /// A block starts with its header, then its columns.
-  struct BlockHeader {
-    std::uint32_t owner;   // the node it was last handed to (compact() asks it)
-    std::uint32_t prev;    // the block before it in its leaf's chain; kNone: the first
-    std::uint32_t before;  // the points the blocks before it hold
-  };
-  static constexpr std::size_t kHeaderBytes = sizeof(BlockHeader);
-  [[nodiscard]] BlockHeader header(std::uint32_t link) const {
-    BlockHeader h;
-    std::memcpy(&h, address(link), sizeof h);
-    return h;
-  }
-  /// The blocks of the leaf whose last block is `link`, last first, into `chain`; returns how many.
-  std::size_t chain_of(std::uint32_t link, std::array<std::uint32_t, kLongestChain>& chain) const {
-    std::size_t n = 0;
-    for (std::uint32_t at = link; at != kNone; at = header(at).prev) {
-      assert(n < kLongestChain);
-      chain[n++] = at;
-    }
-    return n;
-  }
-  /// In the chain ending at `last`: the block after `link` (kNone if `link` is the last), or
-  /// nothing if `link` is not in it.
-  [[nodiscard]] std::optional<std::uint32_t> next_in_chain(std::uint32_t last, std::uint32_t link) const {
-    std::uint32_t next = kNone;
-    for (std::uint32_t at = last; at != kNone; next = at, at = header(at).prev) {
-      if (at == link) return next;
-    }
-    return std::nullopt;
-  }
-  /// Points the block at `link` to the block before it, moved to `prev` (its page copied first
-  /// while a snapshot holds it: a snapshot reads the chain).
-  void set_prev(std::uint32_t link, std::uint32_t prev) {
-    std::memcpy(writable(link) + offsetof(BlockHeader, prev), &prev, sizeof prev);
-  }
+  /// A block starts with the node it was last handed to (compact() asks it), then its columns.
+  static constexpr std::size_t kOwnerBytes = sizeof(std::uint32_t);
   /// Where the block at `link` starts, to read.
   [[nodiscard]] const std::byte* address(std::uint32_t link) const {
     const Pool& p = pools_[std::size_t(class_of(link))];
@@ -495,7 +404,7 @@ class PointStore {
   }
   /// The columns of a block of class c at `start`.
   [[nodiscard]] Block layout(std::byte* start, int c) const {
-    std::byte* at = start + kHeaderBytes;
+    std::byte* at = start + kOwnerBytes;
     const std::uint32_t cap = capacity_of(c);
     std::byte* column = at + 3 * sizeof(float) * cap;  // the kept columns follow x, y, z in order
     auto next = [&]<class T>(bool kept, T*) -> T* {
@@ -512,51 +421,24 @@ class PointStore {
     return b;
   }
   /// append_picked's and append_bytes's common part: makes room for `n` more points and calls
-  /// copy(to, from, first, k) for each column `source` (a PointSpan or ColumnBytes) has: k values
-  /// from the source's first-th of the n, to `to`.
+  /// copy(to, from) for each column `source` (a PointSpan or ColumnBytes) has, `to` the block's
+  /// column past its `count` points.
   template <class Source, class Copy>
   void append_columns(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, const Source& source,
                       std::uint32_t n, std::uint32_t room, Copy&& copy) {
-    extend(link, owner, count, n, room, [&](const Block& b, std::uint32_t at, std::uint32_t first, std::uint32_t k) {
-      const auto column = [&](auto* to, const auto* from) {
-        if (from != nullptr) copy(to + at, from, first, k);  // null: a column not kept
-      };
-      column(b.x, source.x);
-      column(b.x + b.capacity, source.y);
-      column(b.x + 2 * std::size_t(b.capacity), source.z);
-      column(b.stamps, source.stamps);
-      column(b.ids, source.ids);
-      column(b.intensities, source.intensities);
-      column(b.times, source.times);
-    });
-  }
-  /// Makes room for `n` more points in the leaf whose last block is `link` (`count` points in all,
-  /// of node `owner`), and has write(block, at, first, k) put k of them, from their first-th,
-  /// into `block` from its point `at`: into the last block's room, then a new last block. A
-  /// leaf of one block and at most kLongestMove points moves to a larger block instead; a first
-  /// block holds `room` if that is more.
-  template <class Write>
-  void extend(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, std::uint32_t n, std::uint32_t room,
-              Write&& write) {
     if (n == 0) return;
-    std::uint32_t done = 0;
-    if (link != kNone) {
-      assert(owner_of(link) == owner);
-      const BlockHeader last = header(link);
-      const std::uint32_t capacity = capacity_of(class_of(link));
-      if (last.prev == kNone && count + n > capacity && count + n <= kLongestMove) {
-        move_to(link, owner, count, class_for(std::max(count + n, room)));
-        return write(tail_block(link), count, 0u, n);
-      }
-      done = std::min(n, capacity - (count - last.before));
-      if (done > 0) write(tail_block(link), count - last.before, 0u, done);
-      if (done == n) return;
-    }
-    // a new last block, of at least half what the leaf holds: a chain grows geometrically
-    const std::uint32_t rest = n - done, held = count + done;
-    const std::uint32_t size = link == kNone ? std::max(rest, room) : std::max(rest, held / 2);
-    link = take(class_for(size), {owner, link, held});
-    write(tail_block(link), 0u, done, rest);
+    reserve(link, owner, count, count + n, room);
+    const Block b = tail_block(link);
+    const auto column = [&](auto* to, const auto* from) {
+      if (from != nullptr) copy(to + count, from);  // null: a column not kept
+    };
+    column(b.x, source.x);
+    column(b.x + b.capacity, source.y);
+    column(b.x + 2 * std::size_t(b.capacity), source.z);
+    column(b.stamps, source.stamps);
+    column(b.ids, source.ids);
+    column(b.intensities, source.intensities);
+    column(b.times, source.times);
   }
   static StoredPoint read(const Block& b, std::uint32_t i) {
     return {{b.x[i], b.x[b.capacity + i], b.x[2 * std::size_t(b.capacity) + i]},
@@ -575,31 +457,35 @@ class PointStore {
     if (b.times) b.times[i] = s.time;
   }
 
-  /// Moves the `count` points of the leaf whose last block is `link` (of node `owner`) to one
-  /// fresh block of class c.
+  /// Makes the block at `link` (holding `count`, of node `owner`) hold at least `needed` points;
+  /// a block that must move for them is made to hold `room` if that is more.
+  void reserve(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, std::uint32_t needed, std::uint32_t room) {
+    assert(link == kNone || owner_of(link) == owner);
+    if (link != kNone && capacity_of(class_of(link)) >= needed) return;
+    move_to(link, owner, count, class_for(std::max(needed, room)));
+  }
+  /// Moves the `count` points at `link` (of node `owner`) to a fresh block of class c.
   void move_to(std::uint32_t& link, std::uint32_t owner, std::uint32_t count, int c) {
-    const std::uint32_t fresh = take(c, {owner, kNone, 0});
-    const Block to = tail_block(fresh);
-    for_each_span(link, count, [&](const PointSpan& s, std::uint32_t from, std::uint32_t before) {
-      copy_points(block(from), to, before, s.size);
-    });
-    release(link);
+    const std::uint32_t fresh = take(c, owner);
+    if (link != kNone) {
+      copy_points(block(link), tail_block(fresh), count);
+      release(link);
+    }
     link = fresh;
   }
-  /// Copies the first `count` points of `from` into `to` from its point `at`, one column at a time.
-  static void copy_points(const Block& from, const Block& to, std::uint32_t at, std::uint32_t count) {
-    for (std::size_t a = 0; a < 3; ++a) std::copy_n(from.x + a * from.capacity, count, to.x + a * to.capacity + at);
-    if (from.stamps) std::copy_n(from.stamps, count, to.stamps + at);
-    if (from.ids) std::copy_n(from.ids, count, to.ids + at);
-    if (from.intensities) std::copy_n(from.intensities, count, to.intensities + at);
-    if (from.times) std::copy_n(from.times, count, to.times + at);
+  /// Copies the first `count` points of `from` into `to`, one column at a time.
+  static void copy_points(const Block& from, const Block& to, std::uint32_t count) {
+    for (std::size_t a = 0; a < 3; ++a) std::copy_n(from.x + a * from.capacity, count, to.x + a * to.capacity);
+    if (from.stamps) std::copy_n(from.stamps, count, to.stamps);
+    if (from.ids) std::copy_n(from.ids, count, to.ids);
+    if (from.intensities) std::copy_n(from.intensities, count, to.intensities);
+    if (from.times) std::copy_n(from.times, count, to.times);
   }
-  /// A block of class c, its header `h` written.
-  std::uint32_t take(int c, const BlockHeader& h) {
+  std::uint32_t take(int c, std::uint32_t owner) {
     if (pools_.size() <= std::size_t(c)) pools_.resize(std::size_t(c) + 1);
     Pool& p = pools_[std::size_t(c)];
     if (p.block_bytes == 0) {
-      p.block_bytes = kHeaderBytes + std::size_t(capacity_of(c)) * std::size_t(3 + columns_.count()) * sizeof(float);
+      p.block_bytes = kOwnerBytes + std::size_t(capacity_of(c)) * std::size_t(3 + columns_.count()) * sizeof(float);
       // a page is mapped in whole pages of the system's (core/storage/mapped_memory.hpp): the
       // fewest of them that hold at least one block with at most an eighth left over, or
       // kMostPageBytes; a sparse pool pays for one such page, not for a page of 2^k blocks
@@ -628,16 +514,10 @@ class PointStore {
     }
     const std::uint32_t link = std::uint32_t(c) << kIndexBits | i;
     // in the block's first line, written next anyway; from here on no snapshot reads the block
-    std::memcpy(copy_page ? writable(link) : in_place(link), &h, sizeof h);
+    std::memcpy(copy_page ? writable(link) : in_place(link), &owner, sizeof owner);
     return link;
   }
 
-  /// Releases the one block at `link`: free, or, while a snapshot may read it, released.
-  void release_block(std::uint32_t link) {
-    // the header is left as it was: compact() asks whether its owner still holds it
-    Pool& p = pools_[std::size_t(class_of(link))];
-    (p.shared ? p.released : p.free).push_back(index_of(link));
-  }
   /// Frees the first `n` released blocks of pool c (the oldest).
   void take_released(std::size_t c, std::size_t n) {
     Pool& p = pools_[c];

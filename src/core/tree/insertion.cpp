@@ -167,41 +167,34 @@ void BatchInsertion::split(std::uint32_t id, const Cell& cell, const std::array<
   const std::uint32_t m = t_.nodes[id].count;
   std::uint32_t block = std::exchange(t_.nodes.edit(id).link, kNone);  // released once the children hold its points
   t_.nodes.make_inner(id);
-  // Each point's octant found once, then, a block at a time, the points' indices grouped by
-  // octant (a counting sort): each child copies its points straight from the blocks' columns.
+  const PointSpan points = t_.points.span(block, m);
+  // Each point's octant found once, then the points' indices grouped by octant (a counting sort):
+  // each child copies its points straight from the block's columns.
   MappedVector<std::uint32_t>& order = t_.buffers.split_order();
   order.resize(2 * std::size_t(m));
   std::uint32_t* const octant = order.data();
   std::uint32_t* const grouped = octant + m;
   const std::array<double, 3> middle = t_.lattice.middle(cell);
-  std::array<std::uint32_t, 8> total{};
-  t_.points.for_each_span(block, m, [&](const PointSpan& points, std::uint32_t, std::uint32_t before) {
-    for (std::uint32_t i = 0; i < points.size; ++i) {
-      octant[before + i] = std::uint32_t(Lattice::octant_within(middle, points.x[i], points.y[i], points.z[i]));
-      ++total[octant[before + i]];
-    }
-  });
-  t_.points.for_each_span(block, m, [&](const PointSpan& points, std::uint32_t, std::uint32_t before) {
-    std::array<std::uint32_t, 9> begin{};
-    for (std::uint32_t i = 0; i < points.size; ++i) ++begin[octant[before + i] + 1];
-    for (std::size_t o = 0; o < 8; ++o) begin[o + 1] += begin[o];
-    std::array<std::uint32_t, 8> at{};
-    std::copy(begin.begin(), begin.end() - 1, at.begin());
-    for (std::uint32_t i = 0; i < points.size; ++i) grouped[at[octant[before + i]]++] = i;
-    for (int o = 0; o < 8; ++o) {
-      const std::uint32_t own = begin[std::size_t(o) + 1] - begin[std::size_t(o)];
-      if (own == 0) continue;
-      const std::uint32_t child = t_.child_or_new(id, cell, o);
-      const std::uint32_t all = total[std::size_t(o)] + incoming[std::size_t(o)];
-      Node& n = t_.nodes.edit(child);
-      t_.points.append_picked(n.link, child, n.count, points, grouped + begin[std::size_t(o)], own,
-                              all <= t_.config.leaf_capacity ? all : 0);
-      n.count += own;
-    }
-  });
-  t_.nodes.for_each_child(id, [&](int o, std::uint32_t ch) {
-    TreeRepair(t_).fit_leaf(ch, t_.keeps_subcells ? Subcells(t_.lattice, t_.lattice.child(cell, o)) : Subcells());
-  });
+  for (std::uint32_t i = 0; i < m; ++i) {
+    octant[i] = std::uint32_t(Lattice::octant_within(middle, points.x[i], points.y[i], points.z[i]));
+  }
+  std::array<std::uint32_t, 9> begin{};
+  for (std::uint32_t i = 0; i < m; ++i) ++begin[octant[i] + 1];
+  for (std::size_t o = 0; o < 8; ++o) begin[o + 1] += begin[o];
+  std::array<std::uint32_t, 8> at{};
+  std::copy(begin.begin(), begin.end() - 1, at.begin());
+  for (std::uint32_t i = 0; i < m; ++i) grouped[at[octant[i]]++] = i;
+  for (int o = 0; o < 8; ++o) {
+    const std::uint32_t own = begin[std::size_t(o) + 1] - begin[std::size_t(o)];
+    if (own == 0) continue;
+    const std::uint32_t child = t_.child_or_new(id, cell, o);
+    const std::uint32_t all = own + incoming[std::size_t(o)];
+    Node& n = t_.nodes.edit(child);
+    t_.points.append_picked(n.link, child, 0, points, grouped + begin[std::size_t(o)], own,
+                          all <= t_.config.leaf_capacity ? all : 0);
+    n.count = own;
+    TreeRepair(t_).fit_leaf(child, t_.keeps_subcells ? Subcells(t_.lattice, t_.lattice.child(cell, o)) : Subcells());
+  }
   t_.points.release(block);
   t_.nodes.for_each_child(id, [&](int o, std::uint32_t ch) {
     if (t_.nodes[ch].count > t_.config.leaf_capacity && cell.depth + 1 < t_.lattice.max_depth) split(ch, t_.lattice.child(cell, o));

@@ -39,9 +39,7 @@ class Checker {
       if (n.count > t_.config().leaf_capacity && n.depth < t_.lattice().max_depth) {
         fail(id, "overfull leaf above the minimum cell size");
       }
-      t_.points().for_each_span(n.link, n.count, [&](const detail::PointSpan&, std::uint32_t block, std::uint32_t) {
-        if (t_.points().owner_of(block) != id) fail(id, "a block of it names another owner");
-      });
+      if (n.link != detail::kNone && t_.points().owner_of(n.link) != id) fail(id, "its block names another owner");
       const detail::Subcells walls(t_.lattice(), cell);
       std::uint64_t subcells = 0;
       t_.points().for_each(n.link, n.count, [&](const detail::StoredPoint& s) {

@@ -96,10 +96,10 @@ void Tree::give_back_memory(std::size_t floor) {
 void Tree::compact_points(std::size_t floor) {
   const std::size_t free = s_.points.free_bytes();
   if (free == 0 || free < floor || free * kFreeShare < s_.points.bytes()) return;
-  const auto last_of = [&](std::uint32_t owner) {
-    return owner < s_.nodes.id_bound() && s_.nodes[owner].leaf ? s_.nodes[owner].link : kNone;
+  const auto holds = [&](std::uint32_t owner, std::uint32_t link) {
+    return owner < s_.nodes.id_bound() && s_.nodes[owner].leaf && s_.nodes[owner].link == link;
   };
-  s_.points.compact(kCompactionBudget, last_of, [&](std::uint32_t owner, std::uint32_t link) { s_.nodes.edit(owner).link = link; });
+  s_.points.compact(kCompactionBudget, holds, [&](std::uint32_t owner, std::uint32_t link) { s_.nodes.edit(owner).link = link; });
 }
 
 // ---------------------------------------------------------------------------------------------

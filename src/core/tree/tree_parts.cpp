@@ -42,9 +42,7 @@ TreeLayout layout_of(const Tree& tree) {
     NodeEntry entry{n.leaf, 0, n.leaf ? n.count : 0};
     if (n.leaf) {
       layout.nodes.push_back(entry);
-      tree.points().for_each_span(n.link, n.count, [&](const PointSpan& s, std::uint32_t, std::uint32_t) {
-        layout.blocks.push_back(s);
-      });
+      layout.leaves.push_back(tree.points().span(n.link, n.count));
       return;
     }
     tree.nodes().for_each_child(id, [&](int o, std::uint32_t) { entry.children |= std::uint8_t(1u << o); });
@@ -101,9 +99,8 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
       Node& leaf = s_.nodes.edit(id);
       s_.points.append_bytes(leaf.link, id, 0, c, next_point, entry.count);
       leaf.count = entry.count;
-      // checked in the block (a leaf appended at once is one), where the copy left them in the
-      // cache: cells and the box are products of intervals, so the points lie inside when their
-      // bounds do
+      // checked in the block, where the copy left them in the cache: cells and the box are
+      // products of intervals, so the points lie inside when their bounds do
       const std::optional<Aabb> bounds = bounds_of_numbers(s_.points.span(leaf.link, leaf.count));
       if (!bounds || (entry.count > 0 && (!s_.lattice.contains(cell, *bounds) || !motion_.box.contains_all(*bounds)))) {
         refuse("node " + std::to_string(index) + ": a point of points " + std::to_string(next_point) + ".." +

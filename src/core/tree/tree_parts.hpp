@@ -33,12 +33,12 @@ struct TreeParts {
   ColumnBytes points;  ///< null where the tree does not keep a column
 };
 
-/// A tree to save, read in place: its nodes, and its leaves' points in the same order, a block
-/// at a time (valid while the tree does not change).
+/// A tree to save, read in place: its nodes, and its leaves' points in the same order (valid
+/// while the tree does not change).
 struct TreeLayout {
   Motion motion;
   std::vector<NodeEntry> nodes;
-  std::vector<PointSpan> blocks;
+  std::vector<PointSpan> leaves;
   std::size_t point_count = 0;
 };
 

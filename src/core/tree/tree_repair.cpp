@@ -72,13 +72,9 @@ void TreeRepair::refit(std::uint32_t id) {
   const Node& n = t_.nodes[id];
   if (n.leaf) {
     // a point names its leaf's cell, whose subcells a leaf keeps in Quantised mode
-    Subcells marks;
-    if (t_.keeps_subcells && n.count > 0) {
-      t_.points.for_each_span(n.link, n.count, [&](const PointSpan& s, std::uint32_t, std::uint32_t before) {
-        if (before == 0) marks = Subcells(t_.lattice, t_.lattice.cell_at(n.depth, {s.x[0], s.y[0], s.z[0]}));
-      });
-    }
-    fit_leaf(id, marks);
+    const PointSpan s = t_.points.span(n.link, n.count);
+    const bool marks = t_.keeps_subcells && n.count > 0;
+    fit_leaf(id, marks ? Subcells(t_.lattice, t_.lattice.cell_at(n.depth, {s.x[0], s.y[0], s.z[0]})) : Subcells());
     return;
   }
   Aabb bounds;
@@ -97,23 +93,23 @@ void TreeRepair::refit(std::uint32_t id) {
 
 void TreeRepair::fit_leaf(std::uint32_t id, const Subcells& quarters, const std::optional<Aabb>& known) {
   Node& n = t_.nodes.edit(id);
+  const PointSpan s = t_.points.span(n.link, n.count);
   // column by column, each loop vector code; the age keys read only where a column holds them
   Aabb bounds;
-  if (known) bounds = *known;
-  const bool aged = t_.points.columns().stamps || t_.points.columns().times;
+  if (known) {
+    bounds = *known;
+  } else {
+    for (std::uint32_t i = 0; i < n.count; ++i) bounds.grow(s.x[i], s.y[i], s.z[i]);
+  }
+  const bool aged = s.stamps != nullptr || s.times != nullptr;
   std::uint32_t oldest = n.count > 0 && !aged ? t_.age.key(StoredPoint{}) : kNone;
+  if (aged) {
+    for (std::uint32_t i = 0; i < n.count; ++i) oldest = std::min(oldest, t_.age.key(s[i]));
+  }
   std::uint64_t subcells = 0;
-  t_.points.for_each_span(n.link, n.count, [&](const PointSpan& s, std::uint32_t, std::uint32_t) {
-    if (!known) {
-      for (std::uint32_t i = 0; i < s.size; ++i) bounds.grow(s.x[i], s.y[i], s.z[i]);
-    }
-    if (aged) {
-      for (std::uint32_t i = 0; i < s.size; ++i) oldest = std::min(oldest, t_.age.key(s[i]));
-    }
-    if (t_.keeps_subcells) {
-      for (std::uint32_t i = 0; i < s.size; ++i) subcells |= std::uint64_t{1} << quarters.of({s.x[i], s.y[i], s.z[i]});
-    }
-  });
+  if (t_.keeps_subcells) {
+    for (std::uint32_t i = 0; i < n.count; ++i) subcells |= std::uint64_t{1} << quarters.of({s.x[i], s.y[i], s.z[i]});
+  }
   n.set_subcells(subcells);
   n.bounds = bounds;
   n.oldest = oldest;
