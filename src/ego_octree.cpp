@@ -15,18 +15,38 @@
 
 namespace eco {
 
+namespace {
+
+/// The density cap's counts of the points `tree` holds (a map loaded); null while the cap is off.
+std::unique_ptr<detail::DensityCells> counted_density(const detail::Tree& tree) {
+  std::unique_ptr<detail::DensityCells> density = detail::density_cells_for(tree.config());
+  if (density && tree.root() != detail::kNone) {
+    density->enter(tree.motion());
+    density->recount([&](auto&& add) {
+      detail::walk_leaves(tree, tree.root(), [](const detail::Aabb&) { return 2; },
+                          [&](const detail::StoredPoint& s, bool) { add(s.p); });
+    });
+  }
+  return density;
+}
+
+}  // namespace
+
 EgoOctree::EgoOctree(const Config& config)
     : tree_(std::make_unique<detail::Tree>(config)),
-      clearing_(config.clearing.enabled ? std::make_unique<detail::ClearingState>() : nullptr) {}
+      clearing_(config.clearing.enabled ? std::make_unique<detail::ClearingState>() : nullptr),
+      density_(detail::density_cells_for(config)) {}
 EgoOctree::EgoOctree(std::unique_ptr<detail::Tree> tree, std::unique_ptr<detail::ClearingState> clearing)
-    : tree_(std::move(tree)), clearing_(std::move(clearing)) {}
+    : tree_(std::move(tree)), clearing_(std::move(clearing)), density_(counted_density(*tree_)) {}
 EgoOctree::~EgoOctree() = default;
 EgoOctree::EgoOctree(EgoOctree&&) noexcept = default;
 EgoOctree& EgoOctree::operator=(EgoOctree&&) noexcept = default;
 
 const UpdateStats& EgoOctree::last_update() const { return last_update_; }
 const detail::Tree& EgoOctree::held() const { return *tree_; }
-std::size_t EgoOctree::bytes_beside_tree() const { return clearing_ ? clearing_->bytes() : 0; }
+std::size_t EgoOctree::bytes_beside_tree() const {
+  return (clearing_ ? clearing_->bytes() : 0) + (density_ ? density_->bytes() : 0);
+}
 
 std::shared_ptr<const Snapshot> EgoOctree::snapshot() {
   return std::shared_ptr<const Snapshot>(new Snapshot(tree_->share()));
@@ -51,7 +71,7 @@ EgoOctree EgoOctree::load(const std::string& path) {
 // --- the update (src/update) ------------------------------------------------------------------
 
 const UpdateStats& EgoOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
-  last_update_ = detail::run_update(*tree_, clearing_.get(), world_T_sensor, scan);
+  last_update_ = detail::run_update(*tree_, clearing_.get(), density_.get(), world_T_sensor, scan);
   return last_update_;
 }
 

@@ -43,6 +43,7 @@ namespace eco {
 namespace detail {
 class Tree;
 struct ClearingState;
+class DensityCells;
 }  // namespace detail
 
 /// The live map. Its queries (knn, radius, box, voxel map, points, stats) are MapReader's.
@@ -100,6 +101,7 @@ class EgoOctree final : public MapReader {
 
   std::unique_ptr<detail::Tree> tree_;
   std::unique_ptr<detail::ClearingState> clearing_;  // free-space clearing's, while Config::clearing is on
+  std::unique_ptr<detail::DensityCells> density_;    // the density cap's counts, while it is on
   UpdateStats last_update_;
 };
 

@@ -46,15 +46,16 @@ void GlobalOctree::update(const Eigen::Isometry3d& world_T_sensor, ScanView scan
   detail::Tree& t = tree_;
   UpdateStats stats = detail::begin_update(t.config(), world_T_sensor, scan);
   detail::ClearingState* clearing = clearing_.get();
-  if (clearing) detail::release_arrivals(t, *clearing, stats);  // the last update's arrivals into space seen empty
+  detail::DensityCells* density = density_.get();
+  if (clearing) detail::release_arrivals(t, density, *clearing, stats);  // the last update's arrivals into space seen empty
   // the precision origin stays where the drive began, like the root
-  const detail::Motion motion = detail::advance_ego_motion_fixed_origin(t, world_T_sensor, scan);
+  const detail::Motion motion = detail::advance_ego_motion_fixed_origin(t, density, world_T_sensor, scan);
   if (t.root() == detail::kNone) t.place_root(detail::Cell{}, first_lattice(t.config(), motion.box));
-  if (deletes_) detail::prune_shift_out(t, motion, stats);
+  if (deletes_) detail::prune_shift_out(t, density, motion, stats);
   std::vector<detail::StoredPoint> none;  // the origin never moves: nothing is handed on
-  if (clearing) detail::clear_free_space(t, *clearing, motion, scan, none, stats);
+  if (clearing) detail::clear_free_space(t, density, *clearing, motion, scan, none, stats);
   while (const std::optional<int> octant = growth_toward(t, motion.box)) t.grow_root(*octant);
-  detail::insert_scan(t, motion, scan, clearing, stats);  // from the root: the doubled roots sit off ECO's lattice
+  detail::insert_scan(t, density, motion, scan, clearing, stats);  // from the root: the doubled roots sit off ECO's lattice
 }
 
 }  // namespace eco::baselines

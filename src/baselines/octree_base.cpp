@@ -43,21 +43,22 @@ class OctreeBase final : public TreeMethod {
     detail::Tree& t = tree_;
     UpdateStats stats = detail::begin_update(t.config(), world_T_sensor, scan);
     detail::ClearingState* clearing = clearing_.get();
-    if (clearing) detail::release_arrivals(t, *clearing, stats);  // the last update's arrivals into space seen empty
-    auto [motion, held] = detail::advance_ego_motion(t, world_T_sensor, scan, stats);  // a moved origin hands back all
+    detail::DensityCells* density = density_.get();
+    if (clearing) detail::release_arrivals(t, density, *clearing, stats);  // the last update's arrivals into space seen empty
+    auto [motion, held] = detail::advance_ego_motion(t, density, world_T_sensor, scan, stats);  // a moved origin hands back all
     if (memory_ == Memory::PointsStillInTheBox) {
-      detail::prune_shift_out(t, motion, stats);                                      // what left the box or aged out
-      if (clearing) detail::clear_free_space(t, *clearing, motion, scan, held, stats);  // what the scan sees through
-      t.take_points(held);                                                            // the rest, rebuilt from scratch
+      detail::prune_shift_out(t, density, motion, stats);  // what left the box or aged out
+      if (clearing) detail::clear_free_space(t, density, *clearing, motion, scan, held, stats);  // what the scan sees through
+      t.take_points(held);  // the rest, rebuilt from scratch
     } else {
       t.take_points(held);
-      held.clear();             // nothing earlier is kept
-      t.recount_density(held);  // so no cell holds a point any more
+      held.clear();                     // nothing earlier is kept
+      if (density) density->clear();    // so no cell holds a point any more
     }
     held = detail::refine_overlap(t, motion, std::move(held), stats);  // a new, empty root on the box
     t.rebuild_start_table(0);  // the paper's: every point from the root
     detail::reinsert(t, held, stats);
-    detail::insert_scan(t, motion, scan, clearing, stats);
+    detail::insert_scan(t, density, motion, scan, clearing, stats);
   }
 
  private:

@@ -4,6 +4,7 @@
 // update strategy differs. This base class provides everything but update().
 
 #include "clearing/clearing.hpp"
+#include "core/density/density_cells.hpp"
 #include "core/tree/invariants.hpp"
 #include "core/tree/tree.hpp"
 #include "query/queries.hpp"
@@ -21,7 +22,8 @@ class TreeMethod : public Method {
   TreeMethod(std::string name, const Config& config)
       : name_(std::move(name)),
         tree_(config),
-        clearing_(config.clearing.enabled ? std::make_unique<detail::ClearingState>() : nullptr) {}
+        clearing_(config.clearing.enabled ? std::make_unique<detail::ClearingState>() : nullptr),
+        density_(detail::density_cells_for(config)) {}
 
   [[nodiscard]] std::string name() const override { return name_; }
   std::size_t knn(const Eigen::Vector3d& query, std::span<Neighbor> out) const override {
@@ -50,6 +52,7 @@ class TreeMethod : public Method {
   [[nodiscard]] Stats stats() const override {
     Stats s = detail::tree_stats(tree_);
     if (clearing_) s.bytes += clearing_->bytes();
+    if (density_) s.bytes += density_->bytes();
     return s;
   }
   [[nodiscard]] Eigen::Vector3d precision_origin() const override { return tree_.motion().anchor; }
@@ -63,6 +66,7 @@ class TreeMethod : public Method {
   std::string name_;
   detail::Tree tree_;
   std::unique_ptr<detail::ClearingState> clearing_;  // free-space clearing's, while Config::clearing is on
+  std::unique_ptr<detail::DensityCells> density_;    // the density cap's counts, while it is on
 };
 
 }  // namespace eco::baselines

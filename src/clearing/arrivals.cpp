@@ -64,9 +64,9 @@ std::uint32_t leaf_holding(const Tree& t, const std::array<float, 3>& p) {
 /// leaf and index.
 class Release {
  public:
-  Release(Tree& tree, const std::vector<StoredPoint>& leaving, const std::vector<std::uint32_t>& marked,
-          const std::vector<std::pair<std::uint32_t, std::uint32_t>>& at)
-      : t_(tree), leaving_(leaving), marked_(marked), at_(at), taken_(leaving.size(), 0) {}
+  Release(Tree& tree, DensityCells* density, const std::vector<StoredPoint>& leaving,
+          const std::vector<std::uint32_t>& marked, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& at)
+      : t_(tree), density_(density), leaving_(leaving), marked_(marked), at_(at), taken_(leaving.size(), 0) {}
 
   [[nodiscard]] Verdict judge(std::uint32_t id, const Node&) const {
     return std::binary_search(marked_.begin(), marked_.end(), id) ? Verdict::LookInside : Verdict::KeepAll;
@@ -85,7 +85,7 @@ class Release {
         }
       }
       return true;
-    });
+    }, density_);
     return released_ != before;
   }
   [[nodiscard]] std::size_t released() const { return released_; }
@@ -96,6 +96,7 @@ class Release {
     bool operator()(std::uint32_t leaf, const std::pair<std::uint32_t, std::uint32_t>& a) const { return leaf < a.first; }
   };
   Tree& t_;
+  DensityCells* density_;
   const std::vector<StoredPoint>& leaving_;
   const std::vector<std::uint32_t>& marked_;
   const std::vector<std::pair<std::uint32_t, std::uint32_t>>& at_;
@@ -105,7 +106,7 @@ class Release {
 
 }  // namespace
 
-void release_arrivals(Tree& tree, ClearingState& state, UpdateStats& stats) {
+void release_arrivals(Tree& tree, DensityCells* density, ClearingState& state, UpdateStats& stats) {
   std::vector<StoredPoint>& leaving = state.leaving;
   if (leaving.empty()) return;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> at;
@@ -119,8 +120,8 @@ void release_arrivals(Tree& tree, ClearingState& state, UpdateStats& stats) {
   std::sort(at.begin(), at.end());
   std::sort(marked.begin(), marked.end());
   marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
-  Release release(tree, leaving, marked, at);
-  tree.filter(release, stats);
+  Release release(tree, density, leaving, marked, at);
+  tree.filter(release, stats, density);
   stats.cleared += release.released();
   leaving.clear();
 }

@@ -46,13 +46,14 @@ struct ClearingState {
 };
 
 /// Stage 0, before anything else moves them: the points the last update brought in where the
-/// scan before theirs saw empty space leave the tree, counted as cleared.
-void release_arrivals(Tree& tree, ClearingState& state, UpdateStats& stats);
+/// scan before theirs saw empty space leave the tree (and `density`, null while the cap is off),
+/// counted as cleared.
+void release_arrivals(Tree& tree, DensityCells* density, ClearingState& state, UpdateStats& stats);
 
-/// Stage 2b, after shift-out: takes out of the tree and of `displaced` the held points `scan`
-/// sees through, and keeps the scan's range image (the last update's too, with
+/// Stage 2b, after shift-out: takes out of the tree, `displaced` and `density` the held points
+/// `scan` sees through, and keeps the scan's range image (the last update's too, with
 /// clearing.arrivals).
-void clear_free_space(Tree& tree, ClearingState& state, const Motion& motion, ScanView scan,
+void clear_free_space(Tree& tree, DensityCells* density, ClearingState& state, const Motion& motion, ScanView scan,
                       std::vector<StoredPoint>& displaced, UpdateStats& stats);
 
 /// Notes, of the points an update brings in, those the last update's scan sees through (from

@@ -104,9 +104,9 @@ std::vector<std::uint32_t> plan_clearing(const Tree& t, std::vector<Visit>& visi
 /// Pass 2, as a filter of Tree::filter: looks only into the subtrees that lost points.
 class Clearing {
  public:
-  Clearing(Tree& tree, const std::vector<std::uint32_t>& plan, const std::vector<Visit>& visits,
+  Clearing(Tree& tree, DensityCells* density, const std::vector<std::uint32_t>& plan, const std::vector<Visit>& visits,
            const SeenPoints& seen)
-      : t_(tree), plan_(plan), visits_(visits), seen_(seen) {}
+      : t_(tree), density_(density), plan_(plan), visits_(visits), seen_(seen) {}
 
   [[nodiscard]] Verdict judge(std::uint32_t id, const Node&) const {
     return plan_[id] != 0 ? Verdict::LookInside : Verdict::KeepAll;
@@ -118,24 +118,25 @@ class Clearing {
       const bool through = next != seen_.end() && *next == i++;
       next += through ? 1 : 0;
       return !through;
-    });
+    }, density_);
     return true;
   }
 
  private:
   Tree& t_;
+  DensityCells* density_;
   const std::vector<std::uint32_t>& plan_;
   const std::vector<Visit>& visits_;
   const SeenPoints& seen_;
 };
 
 /// Clears from `tree` and `displaced` what `judge` sees through.
-void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judge& judge, std::vector<StoredPoint>& displaced,
-                        UpdateStats& stats) {
+void clear_seen_through(Tree& tree, DensityCells* density, const PixelLookup& pixels, const Judge& judge,
+                        std::vector<StoredPoint>& displaced, UpdateStats& stats) {
   std::erase_if(displaced, [&](const StoredPoint& s) {
     if (!judge.sees_through(pixels, s.p)) return false;
     ++stats.cleared;
-    tree.forget(s);
+    if (density) density->forget(s.p);
     return true;
   });
   if (tree.root() == kNone) return;
@@ -152,13 +153,13 @@ void clear_seen_through(Tree& tree, const PixelLookup& pixels, const Judge& judg
   if (seen.empty()) return;
   std::sort(seen.begin(), seen.end());  // tier 1's undecided points came later
   const std::vector<std::uint32_t> plan = plan_clearing(tree, visits, seen);
-  Clearing clearing(tree, plan, visits, seen);
-  tree.filter(clearing, stats);
+  Clearing clearing(tree, density, plan, visits, seen);
+  tree.filter(clearing, stats, density);
 }
 
 }  // namespace
 
-void clear_free_space(Tree& tree, ClearingState& state, const Motion& motion, ScanView scan,
+void clear_free_space(Tree& tree, DensityCells* density, ClearingState& state, const Motion& motion, ScanView scan,
                       std::vector<StoredPoint>& displaced, UpdateStats& stats) {
   const Config& config = tree.config();
   if (config.clearing.arrivals) std::swap(state.image, state.before);  // the last update's image; its old storage is reused
@@ -167,7 +168,7 @@ void clear_free_space(Tree& tree, ClearingState& state, const Motion& motion, Sc
   const PixelLookup pixels(config.sensor, state.pixel_tables);
   const Judge judge{Sight(motion.pose, motion.anchor, config.sensor),
                     SeenThrough(RangeImage(pixels, scan, state.image.storage), config.clearing.margin)};
-  clear_seen_through(tree, pixels, judge, displaced, stats);
+  clear_seen_through(tree, density, pixels, judge, displaced, stats);
 }
 
 }  // namespace eco::detail

@@ -57,7 +57,7 @@ std::array<std::size_t, kSteps + 2> count_by_step(const Tree& tree, const std::a
 
 }  // namespace
 
-void keep_to_budget(Tree& tree, UpdateStats& stats) {
+void keep_to_budget(Tree& tree, DensityCells* density, UpdateStats& stats) {
   const std::uint32_t budget = tree.config().region.max_points;
   if (budget == 0 || tree.size() <= budget) return;
   Motion narrowed = tree.motion();
@@ -69,7 +69,7 @@ void keep_to_budget(Tree& tree, UpdateStats& stats) {
   narrowed.region_moved = true;
   narrowed.region_size.scale = double(fits) / kSteps;
   UpdateStats pruning;
-  prune_shift_out(tree, narrowed, pruning);
+  prune_shift_out(tree, density, narrowed, pruning);
   stats.over_budget += pruning.pruned;
   stats.region_tested += pruning.region_tested;
   tree.narrow_region(*narrowed.region, narrowed.region_size);

@@ -12,18 +12,16 @@ namespace {
 
 /// Takes every held point out of the tree, re-expressed against the new precision origin (rounded
 /// once more to float); points the rounding takes out of the box, or past the age limit, are
-/// dropped.
-std::vector<StoredPoint> rebase(Tree& tree, const Motion& motion, UpdateStats& stats) {
+/// dropped. The density counts are made anew from those kept: every cell key moved with the origin.
+std::vector<StoredPoint> rebase(Tree& tree, DensityCells* density, const Motion& motion, UpdateStats& stats) {
   std::vector<StoredPoint> held;
   tree.take_points(held);
   const Eigen::Vector3d shift = *motion.origin_shift;  // exact: multiples of kOriginStep
   for (StoredPoint& s : held) s.p = rebased(s.p, shift);
-  std::erase_if(held, [&](const StoredPoint& s) {
-    if (!leaves(tree, s, motion, stats)) return false;
-    tree.forget(s);
-    return true;
+  std::erase_if(held, [&](const StoredPoint& s) { return leaves(tree, s, motion, stats); });
+  if (density) density->recount([&](auto&& add) {
+    for (const StoredPoint& s : held) add(s.p);
   });
-  tree.recount_density(held);  // every cell key moved with the origin
   stats.rebased = true;
   stats.rebuilt_subtrees += 1;
   return held;
@@ -59,22 +57,25 @@ double latest_time(ScanView scan, const Config& config) {
 
 }  // namespace
 
-EgoMotion advance_ego_motion(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan,
+EgoMotion advance_ego_motion(Tree& tree, DensityCells* density, const Eigen::Isometry3d& world_T_sensor, ScanView scan,
                              UpdateStats& stats) {
   EgoMotion out{next_motion(world_T_sensor, tree.motion(), tree.config().box_side, true,
                              latest_time(scan, tree.config())),
                  {}};
   place_region(out.motion, tree.config(), tree.motion(), scan);
-  tree.set_motion(out.motion);  // the density keys of the re-expressed points need the new origin
-  if (out.motion.origin_shift) out.displaced = rebase(tree, out.motion, stats);
+  tree.set_motion(out.motion);
+  if (density) density->enter(out.motion);  // the keys of the re-expressed points need the new origin
+  if (out.motion.origin_shift) out.displaced = rebase(tree, density, out.motion, stats);
   return out;
 }
 
-Motion advance_ego_motion_fixed_origin(Tree& tree, const Eigen::Isometry3d& world_T_sensor, ScanView scan) {
+Motion advance_ego_motion_fixed_origin(Tree& tree, DensityCells* density, const Eigen::Isometry3d& world_T_sensor,
+                                       ScanView scan) {
   Motion motion = next_motion(world_T_sensor, tree.motion(), tree.config().box_side, /*moves_origin=*/false,
                               latest_time(scan, tree.config()));
   place_region(motion, tree.config(), tree.motion(), scan);
   tree.set_motion(motion);
+  if (density) density->enter(motion);
   return tree.motion();
 }
 

@@ -27,11 +27,11 @@ int start_depth(const Tree& t, const Motion& motion) {
 
 }  // namespace
 
-void insert_shift_in(Tree& tree, const Motion& motion, ScanView scan, std::vector<StoredPoint> displaced,
-                     ClearingState* clearing, UpdateStats& stats) {
+void insert_shift_in(Tree& tree, DensityCells* density, const Motion& motion, ScanView scan,
+                     std::vector<StoredPoint> displaced, ClearingState* clearing, UpdateStats& stats) {
   place_start_table(tree, motion);
   reinsert(tree, displaced, stats);
-  insert_scan(tree, motion, scan, clearing, stats);
+  insert_scan(tree, density, motion, scan, clearing, stats);
 }
 
 void place_start_table(Tree& tree, const Motion& motion) { tree.rebuild_start_table(start_depth(tree, motion)); }
@@ -63,8 +63,8 @@ std::size_t drop_aged(const Tree& tree, AdmittedGroup& group, const Make& make) 
 /// Inserts the scan points the policy admits and the density cap passes, each as
 /// make(stored coordinates, scan index) makes it; returns how many.
 template <class Make>
-std::size_t take_in(Tree& tree, const Motion& motion, ScanView scan, ClearingState* clearing, UpdateStats& stats,
-                    const Make& make) {
+std::size_t take_in(Tree& tree, DensityCells* density, const Motion& motion, ScanView scan, ClearingState* clearing,
+                    UpdateStats& stats, const Make& make) {
   static_assert(kAdmitGroup <= kDensityGroup, "an admitted group is judged whole");
   using Point = decltype(make(std::array<float, 3>{}, std::uint32_t{}));
   const bool timed_age = tree.config().max_age_seconds > 0.0;
@@ -78,7 +78,11 @@ std::size_t take_in(Tree& tree, const Motion& motion, ScanView scan, ClearingSta
       if (timed_age) stats.skipped_by_age += drop_aged(tree, group, make);
       // in scan order: the first points to reach a full cell are the ones kept
       std::array<std::uint8_t, kAdmitGroup> passed;
-      stats.skipped_by_density += tree.judge_density(group.points.data(), group.size, passed.data());
+      if (density) {
+        stats.skipped_by_density += density->judge(group.points.data(), group.size, passed.data());
+      } else {
+        std::fill_n(passed.begin(), group.size, std::uint8_t{1});
+      }
       for_each_set(passed.data(), group.size, [&](std::size_t j) { insert(make(group.points[j], group.index[j])); });
     });
   }, check);
@@ -86,15 +90,16 @@ std::size_t take_in(Tree& tree, const Motion& motion, ScanView scan, ClearingSta
 
 }  // namespace
 
-void insert_scan(Tree& tree, const Motion& motion, ScanView scan, ClearingState* clearing, UpdateStats& stats) {
+void insert_scan(Tree& tree, DensityCells* density, const Motion& motion, ScanView scan, ClearingState* clearing,
+                 UpdateStats& stats) {
   const Columns& kept = tree.points().columns();
   if (kept.count() == 0) {  // coordinates alone: the batches move less than half the bytes
-    stats.inserted = take_in(tree, motion, scan, clearing, stats,
+    stats.inserted = take_in(tree, density, motion, scan, clearing, stats,
                              [](const std::array<float, 3>& p, std::uint32_t) { return BarePoint{p}; });
     return;
   }
   const std::uint32_t stamp = kept.stamps ? motion.frame : 0;
-  stats.inserted = take_in(tree, motion, scan, clearing, stats, [&](const std::array<float, 3>& p, std::uint32_t i) {
+  stats.inserted = take_in(tree, density, motion, scan, clearing, stats, [&](const std::array<float, 3>& p, std::uint32_t i) {
     return StoredPoint{p, stamp, kept.ids ? scan.ids[i] : 0u, kept.intensities ? scan.intensities[i] : 0.0f,
                        kept.times ? float(scan.times[i] - motion.clock.origin) : 0.0f};
   });

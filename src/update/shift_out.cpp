@@ -9,8 +9,8 @@ namespace {
 /// by point.
 class Pruner {
  public:
-  Pruner(Tree& tree, const Motion& motion, UpdateStats& stats)
-      : t_(tree), motion_(motion), stats_(stats), cutoff_(tree.age_limit().cutoff) {}
+  Pruner(Tree& tree, DensityCells* density, const Motion& motion, UpdateStats& stats)
+      : t_(tree), density_(density), motion_(motion), stats_(stats), cutoff_(tree.age_limit().cutoff) {}
 
   [[nodiscard]] Verdict judge(std::uint32_t, const Node& n) const {
     const EgoRegion* region = moved_region();
@@ -21,7 +21,7 @@ class Pruner {
   bool filter_leaf(std::uint32_t id) {
     const Node& n = t_.nodes()[id];
     if (box_keeps(n)) stats_.region_tested += n.count;  // looked into for the region's surface alone
-    t_.retain(id, [&](const StoredPoint& s) { return !leaves(t_, s, motion_, stats_); });
+    t_.retain(id, [&](const StoredPoint& s) { return !leaves(t_, s, motion_, stats_); }, density_);
     return true;  // judged LookInside: it straddles the box's or the region's surface, or holds aged points
   }
 
@@ -31,6 +31,7 @@ class Pruner {
   [[nodiscard]] bool box_keeps(const Node& n) const { return n.oldest >= cutoff_ && motion_.box.contains_all(n.bounds); }
 
   Tree& t_;
+  DensityCells* density_;
   const Motion& motion_;
   UpdateStats& stats_;
   std::uint32_t cutoff_ = 0;
@@ -38,10 +39,10 @@ class Pruner {
 
 }  // namespace
 
-void prune_shift_out(Tree& tree, const Motion& motion, UpdateStats& stats) {
+void prune_shift_out(Tree& tree, DensityCells* density, const Motion& motion, UpdateStats& stats) {
   if (tree.root() == kNone) return;
-  Pruner pruner(tree, motion, stats);
-  tree.filter(pruner, stats);
+  Pruner pruner(tree, density, motion, stats);
+  tree.filter(pruner, stats, density);
 }
 
 bool leaves(const Tree& tree, const StoredPoint& s, const Motion& motion, UpdateStats& stats) {

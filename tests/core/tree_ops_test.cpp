@@ -246,7 +246,7 @@ TEST_F(TreeOpsTest, DropAndFilterCountWhatLeaves) {
   Motion motion = tree_->motion();
   Box& half = motion.box;
   half.hi[0] = (half.lo[0] + half.hi[0]) / 2;  // keep the lower half in x
-  prune_shift_out(*tree_, motion, stats);
+  prune_shift_out(*tree_, nullptr, motion, stats);
   Points want;
   std::copy_if(inserted_.begin(), inserted_.end(), std::back_inserter(want),
                [&](const std::array<float, 3>& p) { return half.contains(p[0], p[1], p[2]); });
@@ -267,7 +267,7 @@ TEST_F(TreeOpsTest, GivingBackMemoryMovesNoPointAndFreesTheBlocksAShrunkMapHeld)
     Motion motion = tree_->motion();
     Box& corner = motion.box;  // keep the far corner from the clusters: most points and nodes leave
     for (int a = 0; a < 3; ++a) corner.lo[a] = corner.hi[a] - 0.6 * (corner.hi[a] - corner.lo[a]);
-    prune_shift_out(*tree_, motion, stats);
+    prune_shift_out(*tree_, nullptr, motion, stats);
     const Points want = held();
     ASSERT_LT(want.size(), inserted_.size() / 4);
     const std::size_t shrunk = tree_->points().bytes();

@@ -62,7 +62,7 @@ TEST(WorkingBuffers, AreKeptBetweenUpdatesAtWhatTheUpdatesUse) {
   for (int t = 0; t < 40; ++t) {
     SCOPED_TRACE("frame " + std::to_string(t));
     const std::vector<Eigen::Vector3f> scan = scan_of(8000, rng);
-    const UpdateStats stats = run_update(tree, nullptr, pose_at(t), ScanView(scan));
+    const UpdateStats stats = run_update(tree, nullptr, nullptr, pose_at(t), ScanView(scan));
     ASSERT_GT(stats.inserted, 1000u);
     if (t == 2) kept = tree.memory().buffer_bytes;
     // neither given back nor grown again: every frame finds its buffers where the last left them
@@ -76,12 +76,12 @@ TEST(WorkingBuffers, AreKeptBetweenUpdatesAtWhatTheUpdatesUse) {
 TEST(WorkingBuffers, ShrinkWithinTwoWindowsOnceTheUpdatesNeedFarLess) {
   Tree tree(Config{});
   std::mt19937 rng(6);
-  run_update(tree, nullptr, pose_at(0), ScanView(scan_of(200000, rng)));
+  run_update(tree, nullptr, nullptr, pose_at(0), ScanView(scan_of(200000, rng)));
   const std::size_t burst = tree.memory().buffer_bytes;
   EXPECT_GE(burst, Tree::kInsertChunk * sizeof(BarePoint)) << "a whole batch of points is held after the burst";
   const std::size_t window = WorkingBuffers::kWindow;
   for (std::size_t t = 1; t <= 2 * window; ++t) {
-    run_update(tree, nullptr, pose_at(0), ScanView(scan_of(500, rng)));
+    run_update(tree, nullptr, nullptr, pose_at(0), ScanView(scan_of(500, rng)));
     if (t < window) {
       EXPECT_EQ(tree.memory().buffer_bytes, burst) << "frame " << t << ": kept through the first window";
     }
@@ -103,7 +103,7 @@ TEST(WorkingBuffers, SteadyUpdatesTakeNoPageFromTheHeap) {
     for (int t = 0; t < 30; ++t) {
       counting = t >= 20;  // the map has come to its size: blocks and buffers are reused
       large_allocations = 0;
-      run_update(tree, nullptr, pose_at(t), ScanView(scans[std::size_t(t)]));
+      run_update(tree, nullptr, nullptr, pose_at(t), ScanView(scans[std::size_t(t)]));
       counting = false;
       large += large_allocations;
     }

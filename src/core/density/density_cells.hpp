@@ -1,8 +1,8 @@
 #pragma once
 // The density cap's state: how many held points each cell of the cap's world grid holds, on the
-// current frame's grid. Its owner (the tree's storage, a flat baseline) tells it the frame and the
-// points that arrive (judge), leave (forget) or are counted anew (recount); the counts agree with
-// the held points as long as every point that leaves is forgotten.
+// current frame's grid. Its owner (EgoOctree, a baseline) hands it to the update's stages, which
+// tell it the frame and the points that arrive (judge), leave (forget) or are counted anew
+// (recount); the counts agree with the held points as long as every point that leaves is forgotten.
 
 #include "core/density/cell_counts.hpp"
 #include "core/density/density_gate.hpp"
@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 
 namespace eco::detail {
 
@@ -61,5 +62,10 @@ class DensityCells {
   CellCounts counts_;
   WorldGrid grid_{{0, 0, 0}, 1.0};
 };
+
+/// The counts for `config`'s cap; null while it is off.
+inline std::unique_ptr<DensityCells> density_cells_for(const Config& config) {
+  return config.density_cap.enabled() ? std::make_unique<DensityCells>(config.density_cap) : nullptr;
+}
 
 }  // namespace eco::detail

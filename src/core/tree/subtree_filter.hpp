@@ -8,6 +8,7 @@
 // id) (keeps some of the leaf's points and refits it: Tree::retain; false when it kept them all
 // and left the leaf untouched). A subtree judged DropAll leaves the tree whole.
 
+#include "core/density/density_cells.hpp"
 #include "core/tree/tree.hpp"
 #include "core/tree/tree_repair.hpp"
 
@@ -21,14 +22,15 @@ namespace filtering {
 enum class Filtered { Unchanged, Changed, Gone };  // what filter_below did to a subtree
 
 template <class Filter>
-Filtered filter_below(const Tree& tree, TreeRepair& repair, std::uint32_t id, Filter& filter, UpdateStats& stats) {
+Filtered filter_below(const Tree& tree, TreeRepair& repair, std::uint32_t id, Filter& filter, UpdateStats& stats,
+                      DensityCells* density) {
   const NodeStore& nodes = tree.nodes();
   const Node& n = nodes[id];
   if (n.count == 0) return Filtered::Unchanged;
   const Verdict verdict = filter.judge(id, n);
   if (verdict == Verdict::KeepAll) return Filtered::Unchanged;
   if (verdict == Verdict::DropAll) {
-    repair.drop(id, stats);
+    repair.drop(id, stats, density);
     return Filtered::Gone;
   }
   if (n.leaf) {
@@ -36,7 +38,7 @@ Filtered filter_below(const Tree& tree, TreeRepair& repair, std::uint32_t id, Fi
   } else {
     bool changed = false;
     nodes.for_each_child(id, [&](int o, std::uint32_t ch) {
-      const Filtered below = filter_below(tree, repair, ch, filter, stats);
+      const Filtered below = filter_below(tree, repair, ch, filter, stats, density);
       if (below == Filtered::Gone) repair.unlink_child(id, o);
       changed = changed || below != Filtered::Unchanged;
     });
@@ -54,20 +56,20 @@ Filtered filter_below(const Tree& tree, TreeRepair& repair, std::uint32_t id, Fi
 }  // namespace filtering
 
 template <class Filter>
-void Tree::filter(Filter& filter, UpdateStats& stats) {
+void Tree::filter(Filter& filter, UpdateStats& stats, DensityCells* density) {
   if (s_.root == kNone) return;
   TreeRepair repair(s_);
-  if (filtering::filter_below(*this, repair, s_.root, filter, stats) == filtering::Filtered::Gone) {
+  if (filtering::filter_below(*this, repair, s_.root, filter, stats, density) == filtering::Filtered::Gone) {
     place_root(s_.root_cell, s_.lattice);  // everything left
   }
 }
 
 template <class Keep>
-void Tree::retain(std::uint32_t id, Keep&& keep) {
+void Tree::retain(std::uint32_t id, Keep&& keep, DensityCells* density) {
   Node& n = s_.nodes.edit(id);
   n.count = s_.points.retain(n.link, n.count, [&](const StoredPoint& s) {
     if (keep(s)) return true;
-    forget(s);
+    if (density) density->forget(s.p);
     return false;
   });
   TreeRepair(s_).refit(id);

@@ -47,7 +47,7 @@ TreeMemory Tree::memory() const {
   TreeMemory m;
   m.buffer_bytes = s_.buffers.bytes();
   m.bytes = sizeof(Tree) + s_.nodes.bytes() + s_.points.bytes() + s_.start.slots.capacity() * sizeof(std::uint32_t) +
-            m.buffer_bytes + s_.density.bytes();
+            m.buffer_bytes;
   m.snapshot_bytes = s_.ledger->snapshot_bytes();
   return m;
 }
@@ -55,7 +55,6 @@ TreeMemory Tree::memory() const {
 void Tree::set_motion(const Motion& m) {
   motion_ = m;
   s_.age = AgeLimit::of(s_.config, m);
-  s_.density.enter(m);
   if (m.clock.shift) shift_times(*m.clock.shift);  // in place, nothing moves
 }
 
@@ -71,16 +70,6 @@ void Tree::shift_times(double shift) {
     if (keyed) TreeRepair(s_).refit(id);
   };
   if (s_.root != kNone) walk(walk, s_.root);
-}
-
-std::size_t Tree::judge_density(const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed) {
-  return s_.density.judge(points, n, passed);
-}
-
-void Tree::recount_density(const std::vector<StoredPoint>& held) {
-  s_.density.recount([&](auto&& add) {
-    for (const StoredPoint& s : held) add(s.p);
-  });
 }
 
 void Tree::give_back_memory(std::size_t floor) {

@@ -18,17 +18,20 @@
 namespace eco::detail {
 
 struct TreeParts;
+class DensityCells;
 
 /// A tree's memory (Tree::memory()).
 struct TreeMemory {
-  std::size_t bytes = 0;           ///< nodes, leaf blocks, start table, working buffers, density counts
+  std::size_t bytes = 0;           ///< nodes, leaf blocks, start table, working buffers
   std::size_t buffer_bytes = 0;    ///< of those, the working buffers'
   std::size_t snapshot_bytes = 0;  ///< beside them, what only snapshots hold (core/storage/shared_pages.hpp)
 };
 
 /// The tree behind an EgoOctree: its storage (core/tree/tree_storage.hpp) and the frame it is in.
 /// Queries read it through the const accessors; stages change it through the operations, each of
-/// which leaves the tree whole, and count what they do in the UpdateStats they are handed.
+/// which leaves the tree whole, and count what they do in the UpdateStats they are handed. The
+/// density cap's counts are its owner's (core/density/density_cells.hpp): the operations that take
+/// points out forget them in the counts they are handed (null while the cap is off).
 class Tree {
  public:
   explicit Tree(const Config& config);
@@ -55,8 +58,8 @@ class Tree {
   [[nodiscard]] const AgeLimit& age_limit() const { return s_.age; }  ///< the current frame's
 
   // --- the frame ------------------------------------------------------------------------------
-  /// Enters a new frame: its motion, the density grid from its anchor, its age limit, and the
-  /// held times re-expressed in place when the clock's origin moved.
+  /// Enters a new frame: its motion, its age limit, and the held times re-expressed in place when
+  /// the clock's origin moved.
   void set_motion(const Motion& m);
   /// The region the frame ends with, once the budget narrowed it (Config::region.max_points).
   void narrow_region(const EgoRegion& region, const RegionSize& size) {
@@ -64,8 +67,6 @@ class Tree {
     motion_.region_size = size;
     motion_.region_moved = true;
   }
-  /// Counts the density cells of `held` anew (after the precision origin moved, their keys did).
-  void recount_density(const std::vector<StoredPoint>& held);
   /// Gives back what a map that shrank holds in free blocks (a bounded share an update), then the
   /// pages this update replaced by copies and the spare ones beyond what it copied.
   void give_back_memory(std::size_t floor = kMemoryFloor);
@@ -81,25 +82,19 @@ class Tree {
   std::size_t insert_collected(Collect&& collect, Look&& look);
   /// Large enough that a batch shares the walk to most start nodes, small enough to stay near the cache.
   static constexpr std::size_t kInsertChunk = std::size_t(1) << 14;
-  /// The density cap's verdicts on new points[0, n) (n <= kDensityGroup): passed[i] = 1 when
-  /// point i's cell holds fewer than the cap, and it is counted there. Returns how many it refused.
-  std::size_t judge_density(const std::array<float, 3>* points, std::size_t n, std::uint8_t* passed);
   /// Fills the start table (where insertion starts) from the current tree at `depth`.
   void rebuild_start_table(int depth);
 
   // --- removal --------------------------------------------------------------------------------
   /// Keeps the points of leaf `id` for which keep(const StoredPoint&) is true, and refits it; the
-  /// others leave the density counts (core/tree/subtree_filter.hpp).
+  /// others leave `density` (core/tree/subtree_filter.hpp).
   template <class Keep>
-  void retain(std::uint32_t id, Keep&& keep);
-  /// Takes a point handed on between stages, outside the tree, out of the density counts.
-  void forget(const StoredPoint& s) {
-    s_.density.forget(s.p);
-  }
-  /// Takes points out in place as `filter` judges each subtree and leaf (core/tree/subtree_filter.hpp).
+  void retain(std::uint32_t id, Keep&& keep, DensityCells* density);
+  /// Takes points out in place as `filter` judges each subtree and leaf, and out of `density`
+  /// (core/tree/subtree_filter.hpp).
   template <class Filter>
-  void filter(Filter& filter, UpdateStats& stats);
-  /// Appends every held point to `out`; the tree is left without a root, the density counts stay.
+  void filter(Filter& filter, UpdateStats& stats, DensityCells* density);
+  /// Appends every held point to `out`; the tree is left without a root.
   void take_points(std::vector<StoredPoint>& out);
 
   // --- the root -------------------------------------------------------------------------------

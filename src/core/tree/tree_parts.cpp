@@ -76,7 +76,6 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
   if (parts.nodes.empty()) refuse("a tree that has taken a frame has no root");
   motion_ = parts.motion;
   s_.age = AgeLimit::of(s_.config, motion_);
-  s_.density.enter(motion_);
   std::tie(s_.root_cell, s_.lattice) = root_placement(s_.config, motion_);
 
   std::size_t next_node = 0;
@@ -127,7 +126,6 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
   s_.root = build(build, kNone, 0, s_.root_cell);
   if (next_node != parts.nodes.size()) refuse(std::to_string(parts.nodes.size() - next_node) + " nodes past the tree");
   if (next_point != n) refuse(std::to_string(n - next_point) + " points past the tree's leaves");
-  s_.density.recount([&](auto&& add) { TreeRepair(s_).walk_points(s_.root, [&](const StoredPoint& s) { add(s.p); }); });
   assert(check_tree(*this).empty());  // every invariant, by the refusals above
 }
 

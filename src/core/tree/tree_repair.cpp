@@ -3,6 +3,7 @@
 
 #include "core/tree/tree_repair.hpp"
 
+#include "core/density/density_cells.hpp"
 #include "core/geometry/subcells.hpp"
 
 #include <algorithm>
@@ -130,9 +131,9 @@ void TreeRepair::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
   t_.nodes.release(id);
 }
 
-void TreeRepair::drop(std::uint32_t id, UpdateStats& stats) {
+void TreeRepair::drop(std::uint32_t id, UpdateStats& stats, DensityCells* density) {
   stats.pruned += t_.nodes[id].count;
-  t_.density.forget_all([&](auto&& offer) { walk_points(id, [&](const StoredPoint& s) { offer(s.p); }); });
+  if (density) density->forget_all([&](auto&& offer) { walk_points(id, [&](const StoredPoint& s) { offer(s.p); }); });
   dissolve(id, nullptr);
 }
 

@@ -16,6 +16,8 @@
 
 namespace eco::detail {
 
+class DensityCells;
+
 class Subcells;
 
 class TreeRepair {
@@ -30,8 +32,9 @@ class TreeRepair {
   /// Releases the subtree at `id` (and the node itself; the root leaves the tree without one);
   /// appends its points to `out` if given.
   void dissolve(std::uint32_t id, std::vector<StoredPoint>* out);
-  /// Releases the subtree at `id` whose points leave the tree (counted as pruned).
-  void drop(std::uint32_t id, UpdateStats& stats);
+  /// Releases the subtree at `id` whose points leave the tree (counted as pruned, and forgotten
+  /// in `density`).
+  void drop(std::uint32_t id, UpdateStats& stats, DensityCells* density);
   /// Turns inner node `id` into one leaf holding all the points below it when they are so few
   /// that it should be one (at most N_max, below the lattice's fixed levels); returns whether it did.
   bool collapse_if_small(std::uint32_t id);

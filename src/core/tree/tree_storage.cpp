@@ -13,8 +13,7 @@ TreeStorage::TreeStorage(const Config& c)
       ledger(std::make_shared<PageLedger>()),
       points(Columns{c.max_age_frames > 0, c.attributes.ids, c.attributes.intensity, c.attributes.time}, ledger),
       min_leaf_depth(detail::min_leaf_depth(c)),
-      keeps_subcells(c.recentring == Recentring::Quantised),
-      density(c.density_cap) {
+      keeps_subcells(c.recentring == Recentring::Quantised) {
   lattice.max_depth = c.max_depth();
 }
 
@@ -28,8 +27,7 @@ TreeStorage::TreeStorage(TreeStorage& live, NodeStore copied_nodes)
       lattice(live.lattice),
       min_leaf_depth(live.min_leaf_depth),
       keeps_subcells(live.keeps_subcells),
-      age(live.age),
-      density(live.config.density_cap) {}
+      age(live.age) {}
 
 std::uint32_t TreeStorage::child_or_new(std::uint32_t id, const Cell& cell, int octant) {
   std::uint32_t ch = nodes.child(id, octant);

@@ -1,11 +1,10 @@
 #pragma once
 // What a tree is made of — its nodes, its leaves' points, its root and lattice, the start table
-// insertion starts from, the density cap's counts, its working buffers — and the one primitive
+// insertion starts from, its working buffers — and the one primitive
 // that keeps these agreeing as nodes are made (a new node at the start depth enters the table).
 // Tree composes its operations on it; batch insertion (core/tree/batch_insertion.hpp) and
 // repair (core/tree/tree_repair.hpp) are operations on it too, each handed the storage it works on.
 
-#include "core/density/density_cells.hpp"
 #include "core/geometry/geometry.hpp"
 #include "core/storage/node_store.hpp"
 #include "core/storage/point_store.hpp"
@@ -37,7 +36,7 @@ struct TreeStorage {
   /// An empty tree's storage under `config`, which must have passed Config::validate().
   explicit TreeStorage(const Config& config);
   /// A snapshot's: `live`'s points shared page by page, `nodes` its copy of `live`'s nodes; no
-  /// start table, density counts or buffers (a snapshot takes no points in).
+  /// start table or buffers (a snapshot takes no points in).
   TreeStorage(TreeStorage& live, NodeStore copied_nodes);
 
   /// The child in `octant` of inner node `id` (cell `cell`), made (inner above min_leaf_depth,
@@ -60,7 +59,6 @@ struct TreeStorage {
   bool keeps_subcells = false;  ///< Quantised mode: every leaf's Node::subcells kept
   AgeLimit age;                 ///< the current frame's
   StartTable start;
-  DensityCells density;  ///< points per density-cap cell, kept while the cap is on
   WorkingBuffers buffers;
 };
 
