@@ -38,6 +38,11 @@ void* allocate_bytes(std::size_t bytes) { return map_bytes(bytes, 0); }
 
 void* allocate_written_bytes(std::size_t bytes) { return map_bytes(bytes, MAP_POPULATE); }
 
+std::byte* map_written(std::size_t bytes) {
+  // a part of a mapping is unmapped as a whole one is: each block goes back on its own
+  return mapped(bytes) ? static_cast<std::byte*>(map_bytes(bytes, MAP_POPULATE)) : nullptr;
+}
+
 void release_bytes(void* memory, std::size_t bytes) noexcept {
   if (memory == nullptr) return;
   if (!mapped(bytes)) {

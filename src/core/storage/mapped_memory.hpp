@@ -30,8 +30,24 @@ inline constexpr std::size_t kMappedFrom = std::size_t{1} << 12;
 /// The same for memory about to be written whole (a pool's page): a mapping is faulted in by the
 /// call itself, at once, rather than a 4 KiB page at a time as it is first written.
 [[nodiscard]] void* allocate_written_bytes(std::size_t bytes);
+/// `count` blocks of `bytes` each (a multiple of kMappedFrom), about to be written whole: mapped,
+/// one mapping faulted in at once, handed to `take(void*)` a block at a time; each block is given
+/// back on its own (release_bytes(block, bytes)), as if it had been allocated alone.
+template <class Take>
+void allocate_written_blocks(std::size_t bytes, std::size_t count, Take&& take);
 /// Gives back what allocate_bytes(bytes) or allocate_written_bytes(bytes) returned.
 void release_bytes(void* memory, std::size_t bytes) noexcept;
+
+/// One mapping of `bytes` faulted in at once (allocate_written_blocks), or null where allocations
+/// are not mapped (then each block is allocated alone).
+[[nodiscard]] std::byte* map_written(std::size_t bytes);
+
+template <class Take>
+void allocate_written_blocks(std::size_t bytes, std::size_t count, Take&& take) {
+  if (count == 0) return;
+  std::byte* run = bytes % kMappedFrom == 0 ? map_written(bytes * count) : nullptr;
+  for (std::size_t i = 0; i < count; ++i) take(run ? run + i * bytes : allocate_written_bytes(bytes));
+}
 
 /// A standard allocator over allocate_bytes: for the containers the tree keeps.
 template <class T>

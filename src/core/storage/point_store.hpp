@@ -21,6 +21,7 @@
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <tuple>
 #include <type_traits>
@@ -191,6 +192,21 @@ class PointStore {
       static_assert(sizeof(*to) == 4);
       std::memcpy(to, from + first * 4, std::size_t(n) * 4);
     });
+  }
+
+  /// Maps at once the pages that fresh blocks for leaves of `counts` points (each, at most one
+  /// block's) will fill, rather than a page at a time as blocks are taken (a map loaded).
+  void make_room_for(std::span<const std::uint32_t> counts) {
+    MappedVector<std::uint32_t> blocks(kClasses, 0);
+    for (const std::uint32_t n : counts) {
+      if (n > 0) ++blocks[std::size_t(class_for(n))];
+    }
+    for (std::size_t c = 0; c < kClasses; ++c) {
+      if (blocks[c] == 0) continue;
+      Pool& p = pool(int(c));
+      const std::size_t pages = (std::size_t(p.used) + blocks[c] + p.per_page.count - 1) / p.per_page.count;
+      if (pages > p.pages.size()) p.pages.push_back_fresh(pages - p.pages.size());
+    }
   }
 
   /// The `count` points of the block at `link`.
@@ -481,7 +497,8 @@ class PointStore {
     if (from.intensities) std::copy_n(from.intensities, count, to.intensities);
     if (from.times) std::copy_n(from.times, count, to.times);
   }
-  std::uint32_t take(int c, std::uint32_t owner) {
+  /// The pool of size class c, set up on first use.
+  Pool& pool(int c) {
     if (pools_.size() <= std::size_t(c)) pools_.resize(std::size_t(c) + 1);
     Pool& p = pools_[std::size_t(c)];
     if (p.block_bytes == 0) {
@@ -495,6 +512,10 @@ class PointStore {
       p.per_page = BlocksPerPage(std::uint32_t((page - kPageHeaderBytes) / p.block_bytes));
       p.pages = PageTable(page, ledger_);
     }
+    return p;
+  }
+  std::uint32_t take(int c, std::uint32_t owner) {
+    Pool& p = pool(c);
     if (p.free.empty() && !p.released.empty()) settle();
     std::uint32_t i;
     bool copy_page = false;  // a block a snapshot may read, on a page it holds

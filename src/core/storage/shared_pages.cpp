@@ -8,6 +8,15 @@
 namespace eco::detail {
 namespace {
 
+/// The page at `memory`, a fresh allocation of `bytes`, counted in `ledger`.
+PageHeader* start_page(void* memory, std::size_t bytes, PageLedger* ledger) {
+  auto* page = new (memory) PageHeader;
+  page->bytes = std::uint32_t(bytes);
+  page->ledger = ledger;
+  ledger->bytes.fetch_add(bytes, std::memory_order_relaxed);
+  return page;
+}
+
 /// A page of `bytes`: a spare one, or one just mapped, which the system hands out zeroed.
 struct NewPage {
   PageHeader* page;
@@ -18,11 +27,7 @@ NewPage new_page(std::size_t bytes, PageLedger* ledger) {
     spare->holders.store(1, std::memory_order_relaxed);
     return {spare, false};
   }
-  auto* page = new (allocate_written_bytes(bytes)) PageHeader;
-  page->bytes = std::uint32_t(bytes);
-  page->ledger = ledger;
-  ledger->bytes.fetch_add(bytes, std::memory_order_relaxed);
-  return {page, comes_zeroed(bytes)};
+  return {start_page(allocate_written_bytes(bytes), bytes, ledger), comes_zeroed(bytes)};
 }
 
 }  // namespace
@@ -69,6 +74,18 @@ void PageTable::push_back() {
   pages_.push_back(page);
   shared_.push_back(0);
   count_live(1);
+}
+
+void PageTable::push_back_fresh(std::size_t n) {
+  pages_.reserve(pages_.size() + n);
+  shared_.reserve(shared_.size() + n);
+  allocate_written_blocks(page_bytes_, n, [&](void* memory) {
+    PageHeader* page = start_page(memory, page_bytes_, ledger_.get());
+    if (!comes_zeroed(page_bytes_)) std::memset(items(page), 0, page_bytes_ - kPageHeaderBytes);
+    pages_.push_back(page);
+    shared_.push_back(0);
+  });
+  count_live(std::ptrdiff_t(n));
 }
 
 void PageTable::resize_down(std::size_t n) {
@@ -122,11 +139,22 @@ void PageLedger::trim_spare(std::size_t keep) {
       }
     }
   }
-  for (PageHeader* page : gone) {
-    const std::size_t page_bytes = page->bytes;
-    bytes.fetch_sub(page_bytes, std::memory_order_relaxed);
-    page->~PageHeader();
-    release_bytes(page, page_bytes);
+  // pages that lie end to end (mapped together: PageTable::push_back_fresh) go back in one call
+  std::sort(gone.begin(), gone.end());
+  for (std::size_t i = 0; i < gone.size();) {
+    auto* const first = reinterpret_cast<std::byte*>(gone[i]);
+    std::size_t run = 0;
+    for (; i < gone.size() && reinterpret_cast<std::byte*>(gone[i]) == first + run; ++i) {
+      const std::size_t page_bytes = gone[i]->bytes;
+      gone[i]->~PageHeader();
+      run += page_bytes;
+      if (!allocations_are_mapped()) {  // each from the heap on its own
+        ++i;
+        break;
+      }
+    }
+    bytes.fetch_sub(run, std::memory_order_relaxed);
+    release_bytes(first, run);
   }
 }
 

@@ -94,6 +94,8 @@ class PageTable {
   }
   /// Appends a fresh, zeroed page.
   void push_back();
+  /// Appends `n` fresh, zeroed pages, mapped at once (a map loaded: its pages all come together).
+  void push_back_fresh(std::size_t n);
   /// Lets go of the pages from `n` on.
   void resize_down(std::size_t n);
   /// Another table over the same pages, each now held once more; until this table writes a page,

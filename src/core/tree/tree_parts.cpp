@@ -78,6 +78,16 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
   s_.age = AgeLimit::of(s_.config, motion_);
   std::tie(s_.root_cell, s_.lattice) = root_placement(s_.config, motion_);
 
+  // the leaves' blocks in pages mapped at once, when the counts can be the tree's (else the build refuses)
+  std::vector<std::uint32_t> counts;
+  std::size_t total = 0;
+  for (const NodeEntry& entry : parts.nodes) {
+    if (!entry.leaf) continue;
+    counts.push_back(entry.count);
+    total += entry.count;
+  }
+  if (total == n) s_.points.make_room_for(counts);
+
   std::size_t next_node = 0;
   std::size_t next_point = 0;
   const auto build = [&](auto&& self, std::uint32_t parent, int octant, const Cell& cell) -> std::uint32_t {
