@@ -4,9 +4,9 @@
 // (core/storage/mapped_memory.hpp): neither the update nor its caller pays for fresh pages each frame.
 //
 // They are kept at the high-water mark of the recent updates, with hysteresis: an update that
-// needs less leaves them as they are; once every update of a window of kWindow has needed under a
-// kSlack-th of what they hold (a map that shrank, or a one-off: the whole map put back after the
-// precision origin moved), they shrink to that window's peak. What they hold is bounded by the
+// needs less leaves them as they are; once each of the last kWindow updates has needed under a
+// kSlack-th of what they hold (a map that shrank, or a one-off: a map's first scan, the whole map
+// put back after the precision origin moved), they shrink to those updates' peak. What they hold is bounded by the
 // largest batch a recent update put in: kInsertChunk points for a scan, the held points for a
 // map put back whole.
 
@@ -15,6 +15,7 @@
 #include "core/storage/point_store.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <tuple>
@@ -47,17 +48,15 @@ class WorkingBuffers {
   std::vector<StoredPoint>& collapsed() { return collapsed_; }
 
   /// Notes that an update is over, in which the largest batch held `points` points, and shrinks
-  /// the buffers when a whole window needed under a kSlack-th of what they hold.
+  /// the buffers when each of the last kWindow updates needed under a kSlack-th of what they hold.
   void end_update(std::size_t points) {
-    window_peak_ = std::max(window_peak_, points);
-    if (++updates_in_window_ < kWindow) return;
-    if (kSlack * window_peak_ < held_points()) {
-      std::apply([&](auto&... typed) { ((shrink(typed.batch), shrink(typed.partitioned)), ...); }, by_type_);
-      for (auto* indices : {&slots_, &codes_, &split_order_}) shrink(*indices);
-      shrink(collapsed_);
-    }
-    window_peak_ = 0;
-    updates_in_window_ = 0;
+    recent_[updates_ % kWindow] = points;
+    if (++updates_ < kWindow) return;
+    const std::size_t peak = *std::max_element(recent_.begin(), recent_.end());
+    if (kSlack * peak >= held_points()) return;
+    std::apply([&](auto&... typed) { ((shrink(typed.batch, peak), shrink(typed.partitioned, peak)), ...); }, by_type_);
+    for (auto* indices : {&slots_, &codes_, &split_order_}) shrink(*indices, peak);
+    shrink(collapsed_, peak);
   }
 
   /// Bytes held.
@@ -81,20 +80,20 @@ class WorkingBuffers {
     return std::apply([](const auto&... typed) { return std::max({typed.batch.capacity()..., typed.partitioned.capacity()...}); },
                       by_type_);
   }
-  /// Gives `v` the window's peak as its room (its contents are working values, not kept).
+  /// Gives `v` room for `peak` (its contents are working values, not kept).
   template <class Vector>
-  void shrink(Vector& v) const {
-    if (v.capacity() <= window_peak_) return;
+  static void shrink(Vector& v, std::size_t peak) {
+    if (v.capacity() <= peak) return;
     Vector().swap(v);
-    v.reserve(window_peak_);
+    v.reserve(peak);
   }
 
   std::tuple<Typed<StoredPoint>, Typed<BarePoint>> by_type_;
   MappedVector<std::uint32_t> slots_, codes_, group_starts_, split_order_;
   MappedVector<std::pair<std::uint32_t, Cell>> detached_;
   std::vector<StoredPoint> collapsed_;
-  std::size_t window_peak_ = 0;
-  std::size_t updates_in_window_ = 0;
+  std::array<std::size_t, kWindow> recent_{};  // the largest batch of each of the last updates
+  std::size_t updates_ = 0;
 };
 
 }  // namespace eco::detail
