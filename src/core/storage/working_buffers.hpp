@@ -27,7 +27,7 @@ namespace eco::detail {
 class WorkingBuffers {
  public:
   static constexpr std::size_t kWindow = 4;  // updates
-  static constexpr std::size_t kSlack = 4;
+  static constexpr std::size_t kSlack = 2;  // a vector that outgrows its room doubles it
 
   /// Insertion's batch of new points (Point: StoredPoint or BarePoint), and room for as many
   /// partitioned.
