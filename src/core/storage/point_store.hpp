@@ -6,10 +6,13 @@
 // holds. A block begins with the id of the leaf it was last handed to, so that a map that shrank
 // can move its blocks down and give the emptied pages back (compact()). The pages are shared with
 // snapshots (core/storage/shared_pages.hpp): a block is written through write_block(), which copies a
-// page a snapshot holds, or, past its points, through tail_block(), which does not.
+// page a snapshot holds, or, past its points, through tail_block(), which does not; a block no
+// snapshot reads is written where it lies (in_place(); docs/design.md, "Snapshots").
 
+#include "core/storage/blocks_per_page.hpp"
 #include "core/storage/mapped_memory.hpp"
 #include "core/storage/node_store.hpp"
+#include "core/storage/point_types.hpp"
 #include "core/storage/shared_pages.hpp"
 
 #include <algorithm>
@@ -28,83 +31,6 @@
 #include <vector>
 
 namespace eco::detail {
-
-/// A point as the tree stores it: anchor-frame float coordinates, its insertion stamp, and the
-/// scan's attributes (zero where not kept); `time` is seconds from the tree's time origin.
-struct StoredPoint {
-  std::array<float, 3> p{};
-  std::uint32_t stamp = 0;
-  std::uint32_t id = 0;
-  float intensity = 0.0f;
-  float time = 0.0f;
-};
-
-/// A new point of a store that keeps no column beside the coordinates (the robot's case):
-/// insertion moves 12 B a point instead of a StoredPoint's 28.
-struct BarePoint {
-  std::array<float, 3> p{};
-};
-
-/// A point to insert as the tree stores it (the columns a BarePoint lacks are not kept: zero).
-inline const StoredPoint& as_stored(const StoredPoint& s) { return s; }
-inline StoredPoint as_stored(const BarePoint& b) { return {b.p}; }
-
-/// The optional per-point columns of a PointStore.
-struct Columns {
-  bool stamps = false, ids = false, intensities = false, times = false;
-  [[nodiscard]] int count() const { return int(stamps) + int(ids) + int(intensities) + int(times); }
-};
-
-/// The points of one leaf, read in place: coordinates by axis, then the kept columns (null when
-/// not kept).
-struct PointSpan {
-  const float* x;
-  const float* y;
-  const float* z;
-  const std::uint32_t* stamps;
-  const std::uint32_t* ids;
-  const float* intensities;
-  const float* times;
-  std::uint32_t size;
-
-  [[nodiscard]] StoredPoint operator[](std::uint32_t i) const {
-    return {{x[i], y[i], z[i]},
-            stamps ? stamps[i] : 0u,
-            ids ? ids[i] : 0u,
-            intensities ? intensities[i] : 0.0f,
-            times ? times[i] : 0.0f};
-  }
-};
-
-/// Columns of 4-byte values in the machine's order, read where they lie at any alignment (a map
-/// file's bytes): x, y, z, then the kept columns as in PointSpan; null when not there.
-struct ColumnBytes {
-  const std::byte* x = nullptr;
-  const std::byte* y = nullptr;
-  const std::byte* z = nullptr;
-  const std::byte* stamps = nullptr;
-  const std::byte* ids = nullptr;
-  const std::byte* intensities = nullptr;
-  const std::byte* times = nullptr;
-};
-
-/// How many blocks a pool's page holds, and which page block i lies on: i / count by a multiply
-/// and a shift (a leaf's block is found on every read; a division would cost several times more).
-/// Exact for every i < 2^32: the reciprocal, rounded up, is over 2^63 / count by at most
-/// count / 2^63, which moves no quotient below 2^63 / count.
-class BlocksPerPage {
- public:
-  BlocksPerPage() = default;
-  explicit BlocksPerPage(std::uint32_t blocks)
-      : count(blocks), reciprocal_(std::uint64_t((static_cast<unsigned __int128>(1) << 63) / blocks) + 1) {}
-  [[nodiscard]] std::uint32_t page_of(std::uint32_t i) const {
-    return std::uint32_t((static_cast<unsigned __int128>(i) * reciprocal_) >> 63);
-  }
-  std::uint32_t count = 1;
-
- private:
-  std::uint64_t reciprocal_ = std::uint64_t{1} << 63;
-};
 
 class PointStore {
  public:
