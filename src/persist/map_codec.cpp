@@ -237,19 +237,9 @@ std::unique_ptr<Tree> get_tree(ByteReader& in, const Config& config, const Motio
   }
   const auto n = in.get<std::uint64_t>("point count");  // get_in_place refuses a count past the file
   parts.point_count = n;
-  const Columns kept{config.max_age_frames > 0, config.attributes.ids, config.attributes.intensity,
-                     config.attributes.time};
-  ColumnBytes& c = parts.points;
-  const auto column = [&](const std::byte*& values, bool is_kept, const char* what) {
+  for_each_column(parts.points, kept_columns(config), [&](const std::byte*& values, bool is_kept, const char* what) {
     if (is_kept) values = in.get_in_place<std::uint32_t>(n, what);  // every column: 4-byte values
-  };
-  column(c.x, true, "x");
-  column(c.y, true, "y");
-  column(c.z, true, "z");
-  column(c.stamps, kept.stamps, "stamps");
-  column(c.ids, kept.ids, "ids");
-  column(c.intensities, kept.intensities, "intensities");
-  column(c.times, kept.times, "times");
+  });
   try {
     return std::make_unique<Tree>(config, parts);
   } catch (const std::invalid_argument& e) {

@@ -66,7 +66,7 @@ inline std::size_t judge_group(CellCounts& counts, const WorldGrid& grid, const 
 /// cell in `grid` whatever the cell holds (a map recounted or loaded) — a group at a time.
 template <class Produce>
 void count_in_groups(CellCounts& counts, const WorldGrid& grid, Produce&& produce) {
-  std::array<std::array<float, 3>, kDensityGroup> points;
+  std::array<std::array<float, 3>, kDensityGroup> points{};  // (zeroed: GCC cannot see a group filled before it is read)
   std::array<std::uint64_t, kDensityGroup> keys;
   std::array<std::uint8_t, kDensityGroup> passed;
   std::size_t held = 0;

@@ -68,4 +68,17 @@ struct ColumnBytes {
   const std::byte* times = nullptr;
 };
 
+/// Calls f(column, kept, name) for each column of `c` (a ColumnBytes, const or to fill) in their
+/// order: x, y and z, always kept, then the others as `kept` says.
+template <class Bytes, class F>
+void for_each_column(Bytes& c, const Columns& kept, F&& f) {
+  f(c.x, true, "x");
+  f(c.y, true, "y");
+  f(c.z, true, "z");
+  f(c.stamps, kept.stamps, "stamps");
+  f(c.ids, kept.ids, "ids");
+  f(c.intensities, kept.intensities, "intensities");
+  f(c.times, kept.times, "times");
+}
+
 }  // namespace eco::detail

@@ -141,18 +141,17 @@ void PageLedger::trim_spare(std::size_t keep) {
   }
   // pages that lie end to end (mapped together: PageTable::push_back_fresh) go back in one call
   std::sort(gone.begin(), gone.end());
+  // (a page from the heap, where allocations are not mapped, goes back on its own)
+  const auto joins = [&](std::size_t i, const std::byte* end) {
+    return allocations_are_mapped() && i < gone.size() && reinterpret_cast<std::byte*>(gone[i]) == end;
+  };
   for (std::size_t i = 0; i < gone.size();) {
     auto* const first = reinterpret_cast<std::byte*>(gone[i]);
     std::size_t run = 0;
-    for (; i < gone.size() && reinterpret_cast<std::byte*>(gone[i]) == first + run; ++i) {
-      const std::size_t page_bytes = gone[i]->bytes;
-      gone[i]->~PageHeader();
-      run += page_bytes;
-      if (!allocations_are_mapped()) {  // each from the heap on its own
-        ++i;
-        break;
-      }
-    }
+    do {
+      run += gone[i]->bytes;
+      gone[i++]->~PageHeader();
+    } while (joins(i, first + run));
     bytes.fetch_sub(run, std::memory_order_relaxed);
     release_bytes(first, run);
   }

@@ -62,13 +62,7 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
       refuse(std::string("the ") + name + " column is " + (is_kept ? "missing" : "there, but not kept"));
     }
   };
-  present(c.x, true, "x");
-  present(c.y, true, "y");
-  present(c.z, true, "z");
-  present(c.stamps, kept.stamps, "stamps");
-  present(c.ids, kept.ids, "ids");
-  present(c.intensities, kept.intensities, "intensities");
-  present(c.times, kept.times, "times");
+  for_each_column(c, kept, present);
   if (parts.motion.frame == 0) {
     if (!parts.nodes.empty()) refuse("a tree that has taken no frame holds nodes");
     return;

@@ -11,7 +11,7 @@ namespace eco::detail {
 TreeStorage::TreeStorage(const Config& c)
     : config(c),
       ledger(std::make_shared<PageLedger>()),
-      points(Columns{c.max_age_frames > 0, c.attributes.ids, c.attributes.intensity, c.attributes.time}, ledger),
+      points(kept_columns(c), ledger),
       min_leaf_depth(detail::min_leaf_depth(c)),
       keeps_subcells(c.recentring == Recentring::Quantised) {
   lattice.max_depth = c.max_depth();

@@ -25,6 +25,12 @@ inline int min_leaf_depth(const Config& config) {
   return config.recentring == Recentring::Quantised ? int(config.quantum_levels) : 0;
 }
 
+/// The point columns a tree under `config` keeps: stamps for an age limit in frames, and the
+/// attributes it asks for.
+inline Columns kept_columns(const Config& config) {
+  return {config.max_age_frames > 0, config.attributes.ids, config.attributes.intensity, config.attributes.time};
+}
+
 /// Nodes at one depth, indexed by their cell: where insertion starts instead of the root.
 struct StartTable {
   int depth = 0;
