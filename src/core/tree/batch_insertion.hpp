@@ -61,15 +61,13 @@ class BatchInsertion {
   /// Prefetches the start node of the first non-empty group at or after `from` (groups of
   /// insert_batch, `first` their bounds), so its miss overlaps the work on the group before.
   void prefetch_start_node(std::size_t from, std::span<const std::uint32_t> first) const;
-  /// The start-depth cell whose slot is `slot` (TreeStorage::start_slot's inverse).
-  [[nodiscard]] Cell start_cell(std::uint32_t slot) const;
 
   TreeStorage& t_;
 };
 
 template <class Point, class Collect, class Look>
 std::size_t Tree::insert_collected(Collect&& collect, Look&& look) {
-  MappedVector<Point>& batch = s_.buffers.batch<Point>();
+  MappedVector<Point>& batch = s_.buffers().batch<Point>();
   std::size_t n = 0;
   const auto insert = [&] {
     n += batch.size();
@@ -83,7 +81,7 @@ std::size_t Tree::insert_collected(Collect&& collect, Look&& look) {
     if (batch.size() == kInsertChunk) insert();
   });
   insert();
-  s_.buffers.end_update(std::min(n, kInsertChunk));
+  s_.buffers().end_update(std::min(n, kInsertChunk));
   return n;
 }
 

@@ -40,11 +40,11 @@ template <class Point>
 BatchInsertion::Added BatchInsertion::insert_sorted(std::uint32_t id, const Cell& cell, Point* from, Point* to, Point* temp,
                                 std::uint32_t* codes, std::uint32_t* codes_temp) {
   const auto m = std::uint32_t(to - from);
-  const int levels = std::min(kCodeLevels, t_.lattice.max_depth - cell.depth);
+  const int levels = std::min(kCodeLevels, t_.lattice().max_depth - cell.depth);
   if (levels < 1) return insert_range(id, cell, from, to, temp);
   // the first level in the top bits, however many are coded
-  const CodeGrid grid = code_grid(t_.lattice, cell, levels, 3 * (kCodeLevels - levels));
-  find_cell_codes(t_.lattice, cell, grid, from, m, codes, reinterpret_cast<std::uint8_t*>(codes_temp));
+  const CodeGrid grid = code_grid(t_.lattice(), cell, levels, 3 * (kCodeLevels - levels));
+  find_cell_codes(t_.lattice(), cell, grid, from, m, codes, reinterpret_cast<std::uint8_t*>(codes_temp));
   sort_pass(from, codes, m, 0, temp, codes_temp);
   sort_pass(temp, codes_temp, m, kDigitBits, from, codes);
   return descend_sorted(id, cell, 0, from, to, temp, codes);
@@ -54,23 +54,23 @@ template <class Point>
 BatchInsertion::Added BatchInsertion::descend_sorted(std::uint32_t id, const Cell& cell, int level, Point* from, Point* to, Point* temp,
                                  const std::uint32_t* codes) {
   const auto m = std::uint32_t(to - from);
-  if (level == kCodeLevels || cell.depth >= t_.lattice.max_depth ||
-      (t_.nodes[id].leaf && t_.nodes[id].count + m <= t_.config.leaf_capacity)) {
+  if (level == kCodeLevels || cell.depth >= t_.lattice().max_depth ||
+      (t_.nodes()[id].leaf && t_.nodes()[id].count + m <= t_.config().leaf_capacity)) {
     // a leaf with room, or below the coded levels; a leaf's subcells are read off the codes where
     // they name the two levels below it (its quarter walls are theirs: four lattice units or more)
     std::optional<std::uint64_t> subcells;
-    if (t_.keeps_subcells && level + 2 <= kCodeLevels && t_.lattice.side(cell.depth) >= 4) {
+    if (t_.keeps_subcells() && level + 2 <= kCodeLevels && t_.lattice().side(cell.depth) >= 4) {
       subcells = subcells_of_codes(codes, m, 3 * (kCodeLevels - 2 - level));
     }
     return insert_range(id, cell, from, to, temp, subcells);
   }
   const int shift = 3 * (kCodeLevels - 1 - level);
-  if (t_.nodes[id].leaf) {  // it holds at most leaf_capacity: its children need no split
+  if (t_.nodes()[id].leaf) {  // it holds at most leaf_capacity: its children need no split
     std::array<std::uint32_t, 8> incoming{};
     for (std::uint32_t i = 0; i < m; ++i) ++incoming[(codes[i] >> shift) & 7u];
     split(id, cell, incoming);
   }
-  t_.nodes.prefetch_children(id);
+  t_.nodes().prefetch_children(id);
   Added added;
   for (std::uint32_t begin = 0, end = 0; begin < m; begin = end) {  // an octant's points lie together, in order
     const std::uint32_t octant = (codes[begin] >> shift) & 7u;
@@ -78,10 +78,10 @@ BatchInsertion::Added BatchInsertion::descend_sorted(std::uint32_t id, const Cel
     const std::uint32_t last_of_run = (codes[begin] >> shift << shift) | ((1u << shift) - 1);
     end = std::uint32_t(std::upper_bound(codes + begin, codes + m, last_of_run) - codes);
     const std::uint32_t ch = t_.child_or_new(id, cell, int(octant));
-    added.merge(descend_sorted(ch, t_.lattice.child(cell, int(octant)), level + 1, from + begin, from + end,
+    added.merge(descend_sorted(ch, t_.lattice().child(cell, int(octant)), level + 1, from + begin, from + end,
                                temp + begin, codes + begin));
   }
-  Node& n = t_.nodes.edit(id);
+  Node& n = t_.nodes().edit(id);
   n.count += m;
   added.add_to(n);
   return added;

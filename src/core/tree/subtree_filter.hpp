@@ -57,17 +57,17 @@ Filtered filter_below(const Tree& tree, TreeRepair& repair, std::uint32_t id, Fi
 
 template <class Filter>
 void Tree::filter(Filter& filter, UpdateStats& stats, DensityCells* density) {
-  if (s_.root == kNone) return;
+  if (s_.root() == kNone) return;
   TreeRepair repair(s_);
-  if (filtering::filter_below(*this, repair, s_.root, filter, stats, density) == filtering::Filtered::Gone) {
-    place_root(s_.root_cell, s_.lattice);  // everything left
+  if (filtering::filter_below(*this, repair, s_.root(), filter, stats, density) == filtering::Filtered::Gone) {
+    place_root(s_.root_cell(), s_.lattice());  // everything left
   }
 }
 
 template <class Keep>
 void Tree::retain(std::uint32_t id, Keep&& keep, DensityCells* density) {
-  Node& n = s_.nodes.edit(id);
-  n.count = s_.points.retain(n.link, n.count, [&](const StoredPoint& s) {
+  Node& n = s_.nodes().edit(id);
+  n.count = s_.points().retain(n.link, n.count, [&](const StoredPoint& s) {
     if (keep(s)) return true;
     if (density) density->forget(s.p);
     return false;

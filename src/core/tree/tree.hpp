@@ -46,16 +46,16 @@ class Tree {
   [[nodiscard]] std::unique_ptr<const Tree> share();
 
   // --- reading --------------------------------------------------------------------------------
-  [[nodiscard]] const Config& config() const { return s_.config; }
-  [[nodiscard]] const NodeStore& nodes() const { return s_.nodes; }
-  [[nodiscard]] const PointStore& points() const { return s_.points; }
-  [[nodiscard]] std::uint32_t root() const { return s_.root; }
-  [[nodiscard]] const Cell& root_cell() const { return s_.root_cell; }
-  [[nodiscard]] const Lattice& lattice() const { return s_.lattice; }
-  [[nodiscard]] std::size_t size() const { return s_.root == kNone ? 0 : s_.nodes[s_.root].count; }
+  [[nodiscard]] const Config& config() const { return s_.config(); }
+  [[nodiscard]] const NodeStore& nodes() const { return s_.nodes(); }
+  [[nodiscard]] const PointStore& points() const { return s_.points(); }
+  [[nodiscard]] std::uint32_t root() const { return s_.root(); }
+  [[nodiscard]] const Cell& root_cell() const { return s_.root_cell(); }
+  [[nodiscard]] const Lattice& lattice() const { return s_.lattice(); }
+  [[nodiscard]] std::size_t size() const { return s_.root() == kNone ? 0 : s_.nodes()[s_.root()].count; }
   [[nodiscard]] TreeMemory memory() const;
   [[nodiscard]] const Motion& motion() const { return motion_; }  ///< the current frame's
-  [[nodiscard]] const AgeLimit& age_limit() const { return s_.age; }  ///< the current frame's
+  [[nodiscard]] const AgeLimit& age_limit() const { return s_.age(); }  ///< the current frame's
 
   // --- the frame ------------------------------------------------------------------------------
   /// Enters a new frame: its motion, its age limit, and the held times re-expressed in place when
@@ -83,7 +83,7 @@ class Tree {
   /// Large enough that a batch shares the walk to most start nodes, small enough to stay near the cache.
   static constexpr std::size_t kInsertChunk = std::size_t(1) << 14;
   /// Fills the start table (where insertion starts) from the current tree at `depth`.
-  void rebuild_start_table(int depth);
+  void rebuild_start_table(int depth) { s_.rebuild_start_table(depth); }
 
   // --- removal --------------------------------------------------------------------------------
   /// Keeps the points of leaf `id` for which keep(const StoredPoint&) is true, and refits it; the
@@ -124,7 +124,7 @@ class Tree {
 
   TreeStorage s_;
   Motion motion_;
-  std::shared_ptr<NodeShelf> shelf_ = std::make_shared<NodeShelf>(s_.ledger);  // shared with snapshots
+  std::shared_ptr<NodeShelf> shelf_ = std::make_shared<NodeShelf>(s_.ledger());  // shared with snapshots
   LedgerCharge own_bytes_;  // a snapshot's: its copy of the nodes
   bool snapshot_ = false;
 };

@@ -42,7 +42,7 @@ class TreeRepair {
   /// Turns inner node `id` into one leaf holding all the points below it.
   void collapse(std::uint32_t id);
   /// Unlinks child `octant` of inner node `id` (released, or handed on by dissolve or drop).
-  void unlink_child(std::uint32_t id, int octant) { t_.nodes.edit_child(id, octant) = kNone; }
+  void unlink_child(std::uint32_t id, int octant) { t_.nodes().edit_child(id, octant) = kNone; }
 
   /// Tree::relink_top's parts: releases the nodes above `depth` and lists the subtrees at `depth`
   /// with their cells (the tree is left without a root); links one under the root, creating the
@@ -56,12 +56,12 @@ class TreeRepair {
   /// Calls f(const StoredPoint&) for every point below `id`.
   template <class F>
   void walk_points(std::uint32_t id, F&& f) const {
-    const Node& n = t_.nodes[id];
+    const Node& n = t_.nodes()[id];
     if (n.leaf) {
-      t_.points.for_each(n.link, n.count, f);
+      t_.points().for_each(n.link, n.count, f);
       return;
     }
-    t_.nodes.for_each_child(id, [&](int, std::uint32_t ch) { walk_points(ch, f); });
+    t_.nodes().for_each_child(id, [&](int, std::uint32_t ch) { walk_points(ch, f); });
   }
 
  private:
