@@ -4,7 +4,7 @@
 #include "read_recording.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const std::string path = fuzz_file(".mcap");
-  read_as_recording(data, size, path);
+  static const FuzzFile file(".mcap");
+  read_as_recording(data, size, file.path());
   return 0;
 }

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cstddef>
+#include <cstdio>
 #include <cstdint>
 #include <fstream>
 #include <string>
@@ -21,7 +22,15 @@ inline void read_as_recording(const std::uint8_t* data, std::size_t size, const 
   }
 }
 
-/// A file of this process's own, ending in `extension`.
-inline std::string fuzz_file(const char* extension) {
-  return "/tmp/eco-fuzz-" + std::to_string(getpid()) + extension;
-}
+/// A file of this process's own, ending in `extension`, removed when the process exits.
+class FuzzFile {
+ public:
+  explicit FuzzFile(const char* extension) : path_("/tmp/eco-fuzz-" + std::to_string(getpid()) + extension) {}
+  FuzzFile(const FuzzFile&) = delete;
+  FuzzFile& operator=(const FuzzFile&) = delete;
+  ~FuzzFile() { std::remove(path_.c_str()); }
+  [[nodiscard]] const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};

@@ -48,6 +48,11 @@ class RecordingTest : public ::testing::Test {
       GTEST_FAIL() << "ECO_RECORDINGS names no folder of test recordings (write_recordings.sh writes them)";
     }
   }
+  void TearDown() override { fs::remove_all(scratch_folder()); }
+
+ public:
+  /// Where a test writes the damaged copies it reads (damaged_copy), gone after each test.
+  static fs::path scratch_folder() { return fs::temp_directory_path() / ("eco-recording-test-" + std::to_string(getpid())); }
 };
 
 /// Every cloud of `topic` in `path` as the writer described it, in order.
@@ -170,7 +175,7 @@ fs::path damaged_copy(const std::string& source, const std::string& name, const 
   std::ifstream in(recordings() / source, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   edit(bytes);
-  const fs::path out = fs::temp_directory_path() / ("eco-recording-test-" + std::to_string(getpid())) / name;
+  const fs::path out = RecordingTest::scratch_folder() / name;
   fs::create_directories(out.parent_path());
   std::ofstream(out, std::ios::binary) << bytes;
   return out;
