@@ -37,10 +37,8 @@ Filtered filter_below(const Tree& tree, TreeRepair& repair, std::uint32_t id, Fi
     if (!filter.filter_leaf(id)) return Filtered::Unchanged;
   } else {
     bool changed = false;
-    nodes.for_each_child(id, [&](int o, std::uint32_t ch) {
-      const Filtered below = filter_below(tree, repair, ch, filter, stats, density);
-      if (below == Filtered::Gone) repair.unlink_child(id, o);
-      changed = changed || below != Filtered::Unchanged;
+    nodes.for_each_child(id, [&](int, std::uint32_t ch) {  // a child gone is unlinked by its dissolve
+      changed = filter_below(tree, repair, ch, filter, stats, density) != Filtered::Unchanged || changed;
     });
     if (!changed) return Filtered::Unchanged;
     repair.refit(id);

@@ -16,6 +16,7 @@ const MappedVector<std::pair<std::uint32_t, Cell>>& TreeRepair::detach_subtrees(
   auto collect = [&](auto&& self, std::uint32_t id, const Cell& cell) -> void {
     if (cell.depth == depth) {
       subtrees.emplace_back(id, cell);
+      t_.nodes().edit(id).parent = kNone;
       return;
     }
     t_.nodes().for_each_child(id, [&](int o, std::uint32_t ch) { self(self, ch, t_.lattice().child(cell, o)); });
@@ -54,7 +55,6 @@ void TreeRepair::refit_moved(std::uint32_t id, const Cell& cell, std::vector<Sto
     // everything below moved out of its octant, or the subtree no longer fits it
     if (!fits) ++stats.rebuilt_subtrees;
     dissolve(ch, fits ? nullptr : &displaced);
-    t_.nodes().edit_child(id, o) = kNone;
   });
   refit(id);
   collapse_if_small(id);
@@ -118,6 +118,12 @@ void TreeRepair::fit_leaf(std::uint32_t id, const Subcells& quarters, const std:
 
 void TreeRepair::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
   if (id == t_.root()) t_.set_root(kNone);
+  const Node& n = t_.nodes()[id];
+  if (n.parent != kNone) t_.nodes().edit_child(n.parent, n.octant) = kNone;
+  release_subtree(id, out);
+}
+
+void TreeRepair::release_subtree(std::uint32_t id, std::vector<StoredPoint>* out) {
   Node& n = t_.nodes().edit(id);
   if (n.leaf) {
     if (out) {
@@ -126,7 +132,7 @@ void TreeRepair::dissolve(std::uint32_t id, std::vector<StoredPoint>* out) {
       t_.points().release(n.link);
     }
   } else {
-    t_.nodes().for_each_child(id, [&](int, std::uint32_t ch) { dissolve(ch, out); });
+    t_.nodes().for_each_child(id, [&](int, std::uint32_t ch) { release_subtree(ch, out); });
   }
   t_.nodes().release(id);
 }

@@ -29,8 +29,8 @@ class TreeRepair {
   /// The same for leaf `id`, whose cell's subcells are `quarters` (kept in Quantised mode), and
   /// whose points' bounds are `bounds` where the caller has them already.
   void fit_leaf(std::uint32_t id, const Subcells& quarters, const std::optional<Aabb>& bounds = std::nullopt);
-  /// Releases the subtree at `id` (and the node itself; the root leaves the tree without one);
-  /// appends its points to `out` if given.
+  /// Releases the subtree at `id` (and the node itself, unlinked from its parent; the root leaves
+  /// the tree without one); appends its points to `out` if given.
   void dissolve(std::uint32_t id, std::vector<StoredPoint>* out);
   /// Releases the subtree at `id` whose points leave the tree (counted as pruned, and forgotten
   /// in `density`).
@@ -41,11 +41,9 @@ class TreeRepair {
   [[nodiscard]] bool should_collapse(std::uint32_t id) const;
   /// Turns inner node `id` into one leaf holding all the points below it.
   void collapse(std::uint32_t id);
-  /// Unlinks child `octant` of inner node `id` (released, or handed on by dissolve or drop).
-  void unlink_child(std::uint32_t id, int octant) { t_.nodes().edit_child(id, octant) = kNone; }
 
   /// Tree::relink_top's parts: releases the nodes above `depth` and lists the subtrees at `depth`
-  /// with their cells (the tree is left without a root); links one under the root, creating the
+  /// with their cells, each without a parent (the tree is left without a root); links one under the root, creating the
   /// inner nodes on its way; refits every node above `depth`, bottom up.
   const MappedVector<std::pair<std::uint32_t, Cell>>& detach_subtrees(int depth);
   void attach_subtree(std::uint32_t id, const Cell& cell);
@@ -65,6 +63,9 @@ class TreeRepair {
   }
 
  private:
+  /// dissolve's walk: the nodes below `id` go with it, their links with them.
+  void release_subtree(std::uint32_t id, std::vector<StoredPoint>* out);
+
   TreeStorage& t_;
 };
 
