@@ -38,8 +38,9 @@ void BatchInsertion::insert(std::span<Point> batch) {
     first[1] = std::uint32_t(batch.size());
   } else {
     // a start cell's slot is its Morton code below the root (start_slot)
-    find_cell_codes(t_.lattice(), t_.root_cell(), code_grid(t_.lattice(), t_.root_cell(), depth, 0), batch.data(), batch.size(),
-                    slot_of.data(), reinterpret_cast<std::uint8_t*>(codes.data()));
+    const CodeGrid grid = code_grid(t_.lattice(), t_.root_cell(), depth, 0);
+    find_cell_codes(t_.lattice(), t_.root_cell(), grid, batch.data(), batch.size(), slot_of.data(),
+                    reinterpret_cast<std::uint8_t*>(codes.data()));
     for (std::size_t i = 0; i < batch.size(); ++i) ++first[std::size_t(slot_of[i]) + 1];
     // first[s + 1] becomes where group s starts, then where it ends as the points go in: at the
     // end first[s] is where group s starts (no second array of positions)
@@ -102,7 +103,8 @@ BatchInsertion::Added BatchInsertion::insert_range(std::uint32_t id, const Cell&
                                std::optional<std::uint64_t> subcells) {
   const auto m = std::uint32_t(to - from);
   Added added;
-  if (t_.nodes()[id].leaf && (t_.nodes()[id].count + m <= t_.config().leaf_capacity || cell.depth >= t_.lattice().max_depth)) {
+  const bool fits = t_.nodes()[id].count + m <= t_.config().leaf_capacity || cell.depth >= t_.lattice().max_depth;
+  if (t_.nodes()[id].leaf && fits) {
     Node& n = t_.nodes().edit(id);
     t_.points().append(n.link, id, n.count, from, to);
     n.count += m;
@@ -110,7 +112,9 @@ BatchInsertion::Added BatchInsertion::insert_range(std::uint32_t id, const Cell&
       added.bounds.grow(s->p[0], s->p[1], s->p[2]);
       added.oldest = std::min(added.oldest, t_.age().key(as_stored(*s)));
     }
-    if (t_.keeps_subcells()) n.set_subcells(n.subcells() | (subcells ? *subcells : Subcells(t_.lattice(), cell).bits(from, to)));
+    if (t_.keeps_subcells()) {
+      n.set_subcells(n.subcells() | (subcells ? *subcells : Subcells(t_.lattice(), cell).bits(from, to)));
+    }
     added.add_to(n);
     return added;
   }
@@ -197,7 +201,9 @@ void BatchInsertion::split(std::uint32_t id, const Cell& cell, const std::array<
   }
   t_.points().release(block);
   t_.nodes().for_each_child(id, [&](int o, std::uint32_t ch) {
-    if (t_.nodes()[ch].count > t_.config().leaf_capacity && cell.depth + 1 < t_.lattice().max_depth) split(ch, t_.lattice().child(cell, o));
+    if (t_.nodes()[ch].count > t_.config().leaf_capacity && cell.depth + 1 < t_.lattice().max_depth) {
+      split(ch, t_.lattice().child(cell, o));
+    }
   });
 }
 

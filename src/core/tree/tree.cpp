@@ -88,7 +88,8 @@ void Tree::compact_points(std::size_t floor) {
   const auto holds = [&](std::uint32_t owner, std::uint32_t link) {
     return owner < s_.nodes().id_bound() && s_.nodes()[owner].leaf && s_.nodes()[owner].link == link;
   };
-  s_.points().compact(kCompactionBudget, holds, [&](std::uint32_t owner, std::uint32_t link) { s_.nodes().edit(owner).link = link; });
+  const auto relink = [&](std::uint32_t owner, std::uint32_t link) { s_.nodes().edit(owner).link = link; };
+  s_.points().compact(kCompactionBudget, holds, relink);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -122,7 +122,8 @@ Tree::Tree(const Config& config, const TreeParts& parts) : Tree(config) {
       TreeRepair(s_).refit(id);
     }
     if (parent != kNone && s_.nodes()[id].count == 0) refuse("node " + std::to_string(index) + ": an empty node");
-    if (!entry.leaf && parent != kNone && cell.depth >= s_.min_leaf_depth() && s_.nodes()[id].count <= s_.config().leaf_capacity) {
+    const bool leaf_sized = cell.depth >= s_.min_leaf_depth() && s_.nodes()[id].count <= s_.config().leaf_capacity;
+    if (!entry.leaf && parent != kNone && leaf_sized) {
       refuse("node " + std::to_string(index) + ": an inner node of " + std::to_string(s_.nodes()[id].count) +
              " points, which would be a leaf");
     }
