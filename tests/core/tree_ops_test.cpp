@@ -179,6 +179,41 @@ TEST_F(TreeOpsTest, RelinkingTheTopKeepsEverySubtreeAndEveryPoint) {
   EXPECT_EQ(tree_->nodes().live(), live);  // the same top levels, made afresh
 }
 
+TEST_F(TreeOpsTest, RelinkingToAMovedRootPutsOutWhatItNoLongerEnclosesAndLinksNothingGone) {
+  const Config config;  // Quantised, k = 3
+  fill(config, 20000);
+  const int k = int(config.quantum_levels);
+  Cell moved = tree_->root_cell();
+  moved.lo[0] += tree_->lattice().side(k);  // one depth-k cell along x: a slab of subtrees left behind
+  std::vector<StoredPoint> displaced;
+  UpdateStats stats;
+  tree_->relink_top(moved, k, displaced, stats);
+  EXPECT_GT(stats.relinked_subtrees, 0u);
+  EXPECT_GT(stats.rebuilt_subtrees, 0u);
+  EXPECT_FALSE(displaced.empty());
+  EXPECT_EQ(check_tree(*tree_), "");  // no link to a node the dissolved subtrees released
+  Points all = held();
+  for (const StoredPoint& s : displaced) {
+    EXPECT_LT(s.p[0], tree_->lattice().wall(0, moved.lo[0])) << "a point the moved root encloses was put out";
+    all.push_back(s.p);
+  }
+  std::sort(all.begin(), all.end());
+  EXPECT_EQ(all, inserted_);
+}
+
+TEST_F(TreeOpsTest, ARootPlacedAnewTakesPointsFromTheRootUntilItsStartTableIsRebuilt) {
+  fill(Config{}, 5000);  // the start table filled at depth k, its slots naming the nodes there
+  tree_->place_root(tree_->root_cell(), tree_->lattice());  // every node released
+  std::vector<StoredPoint> batch;
+  for (std::size_t i = 0; i < inserted_.size(); i += 3) batch.push_back(StoredPoint{inserted_[i]});
+  Points want;
+  for (const StoredPoint& s : batch) want.push_back(s.p);
+  std::sort(want.begin(), want.end());
+  tree_->insert_batch(batch);
+  EXPECT_EQ(held(), want);
+  EXPECT_EQ(check_tree(*tree_), "");
+}
+
 TEST_F(TreeOpsTest, GrowingTheRootKeepsEveryPointAndDeepensTheLattice) {
   Config config;
   config.recentring = Recentring::Exact;
