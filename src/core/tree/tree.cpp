@@ -46,8 +46,7 @@ std::unique_ptr<const Tree> Tree::share() { return std::unique_ptr<const Tree>(n
 TreeMemory Tree::memory() const {
   TreeMemory m;
   m.buffer_bytes = s_.buffers().bytes();
-  m.bytes = sizeof(Tree) + s_.nodes().bytes() + s_.points().bytes() + s_.start_bytes() +
-            m.buffer_bytes;
+  m.bytes = sizeof(Tree) + s_.nodes().bytes() + s_.points().bytes() + s_.start_bytes() + m.buffer_bytes;
   m.snapshot_bytes = s_.ledger()->snapshot_bytes();
   return m;
 }
@@ -101,8 +100,6 @@ void Tree::place_root(const Cell& cell, const Lattice& lattice) {
   make_root();
 }
 
-
-
 void Tree::relink_top(const Cell& new_root, int depth, std::vector<StoredPoint>& displaced, UpdateStats& stats) {
   TreeRepair repair(s_);
   const auto& subtrees = repair.detach_subtrees(depth);
@@ -123,8 +120,6 @@ void Tree::move_lattice(const Lattice& lattice, std::vector<StoredPoint>& displa
   s_.place(s_.root_cell(), lattice);
   if (s_.root() != kNone) TreeRepair(s_).refit_moved(s_.root(), s_.root_cell(), displaced, stats);
 }
-
-
 
 void Tree::grow_root(int octant) {
   const std::int64_t side = s_.lattice().side(0);
@@ -163,15 +158,8 @@ void Tree::make_root() {
   if (s_.min_leaf_depth() > 0) s_.nodes().make_inner(s_.root());
 }
 
-
-
-
-
 void Tree::take_points(std::vector<StoredPoint>& out) {
   if (s_.root() != kNone) TreeRepair(s_).dissolve(s_.root(), &out);
 }
-
-
-
 
 }  // namespace eco::detail
