@@ -32,8 +32,9 @@ inline Columns kept_columns(const Config& config) {
 
 /// What a tree is made of, behind the operations that keep its parts agreeing. What the
 /// configuration fixes cannot change; the root's placement changes only whole (a root cell with
-/// its lattice); the start table holds exactly the nodes at its depth, entered as they are made
-/// (child_or_new, note_created) and found again by their cell. The nodes and points are read and
+/// its lattice); the start table is filled from the nodes at its depth (rebuild_start_table, before
+/// each update's insertion), enters those made since (child_or_new), and is set aside by a new
+/// placement. The nodes and points are read and
 /// written through their stores' own interfaces (core/storage/).
 class TreeStorage {
  public:
