@@ -44,8 +44,7 @@ class TreeRepair {
 
   /// Tree::relink_top's parts: releases the nodes above `depth` and lists the subtrees at `depth`
   /// with their cells, each without a parent (the tree is left without a root); links one under
-  /// the root, creating the
-  /// inner nodes on its way; refits every node above `depth`, bottom up.
+  /// the root, creating the inner nodes on its way; refits every node above `depth`, bottom up.
   const MappedVector<std::pair<std::uint32_t, Cell>>& detach_subtrees(int depth);
   void attach_subtree(std::uint32_t id, const Cell& cell);
   void refit_above(int depth);
