@@ -3,13 +3,12 @@
 // their checksum set right first, so that the fuzzer reaches the sections behind it.
 
 #include "bytes/byte_stream.hpp"
+#include "fuzz_file.hpp"
 #include "persist/map_codec.hpp"
 
 #include <eco/ego_octree.hpp>
 
 #include <zlib.h>
-
-#include <unistd.h>
 
 #include <cstddef>
 #include <cstdio>
@@ -31,12 +30,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   // it makes a map: loaded through the public API, the tree answers and goes on
-  static const std::string path = "/tmp/fuzz_map_file-" + std::to_string(::getpid()) + ".eco";
-  std::FILE* file = std::fopen(path.c_str(), "wb");
+  static const FuzzFile scratch(".eco");
+  std::FILE* file = std::fopen(scratch.path().c_str(), "wb");
   if (file == nullptr) return 0;
   std::fwrite(bytes.data(), 1, bytes.size(), file);
   std::fclose(file);
-  eco::EgoOctree tree = eco::EgoOctree::load(path);
+  eco::EgoOctree tree = eco::EgoOctree::load(scratch.path());
   (void)tree.knn(tree.pose().translation(), 5);
   (void)tree.voxel_keys(0.5);
   const std::vector<Eigen::Vector3f> scan{{1, 2, 0}, {-3, 0.5f, 1}, {0, 0, 0}};

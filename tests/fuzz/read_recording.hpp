@@ -5,10 +5,9 @@
 #include <eco/io/error.hpp>
 #include <eco/io/recording.hpp>
 
-#include <unistd.h>
+#include "fuzz_file.hpp"
 
 #include <cstddef>
-#include <cstdio>
 #include <cstdint>
 #include <fstream>
 #include <string>
@@ -21,16 +20,3 @@ inline void read_as_recording(const std::uint8_t* data, std::size_t size, const 
   } catch (const eco::io::Error&) {
   }
 }
-
-/// A file of this process's own, ending in `extension`, removed when the process exits.
-class FuzzFile {
- public:
-  explicit FuzzFile(const char* extension) : path_("/tmp/eco-fuzz-" + std::to_string(getpid()) + extension) {}
-  FuzzFile(const FuzzFile&) = delete;
-  FuzzFile& operator=(const FuzzFile&) = delete;
-  ~FuzzFile() { std::remove(path_.c_str()); }
-  [[nodiscard]] const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
